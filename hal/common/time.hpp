@@ -1,0 +1,17 @@
+// Time conventions: every timestamp in flat2d is int64 nanoseconds. Absolute times
+// are nanoseconds since the Unix epoch (UTC); sensor-relative times say so in their
+// name (e.g. ns_past_hour).
+#pragma once
+
+#include <cstdint>
+
+namespace flat2d {
+
+using TimeNs = std::int64_t;
+
+inline constexpr TimeNs kNsPerUs = 1'000;
+inline constexpr TimeNs kNsPerMs = 1'000'000;
+inline constexpr TimeNs kNsPerSecond = 1'000'000'000;
+inline constexpr TimeNs kNsPerHour = 3600 * kNsPerSecond;
+
+}  // namespace flat2d
