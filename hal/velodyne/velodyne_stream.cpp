@@ -20,8 +20,8 @@ std::int64_t DeviceStepUs(std::uint32_t previous, std::uint32_t now) {
   return step;
 }
 
-double ForwardAngle(double from, double to) {
-  const double delta = std::fmod(to - from, kTwoPi);
+double ForwardAngle(float from, float to) {
+  const double delta = std::fmod(static_cast<double>(to) - static_cast<double>(from), kTwoPi);
   return delta < 0.0 ? delta + kTwoPi : delta;
 }
 
