@@ -96,7 +96,7 @@ std::string CaptureSummaryToJson(const CaptureSummary& summary, const std::strin
   out << "\"time_source\":" << Quote(std::string(TimeSourceName(summary.time_source))) << ",";
   if (summary.last_position && summary.last_position->rmc) {
     out << "\"gps_fix\":{\"utc_s\":" << Seconds(summary.last_position->rmc->utc_time_ns)
-        << ",\"nmea\":" << Quote(summary.last_position->nmea_sentence) << "},";
+        << ",\"nmea\":" << Quote(std::string(summary.last_position->nmea_sentence())) << "},";
   }
   WriteRevolutions(out, summary);
   out << "}";

@@ -12,7 +12,7 @@ constexpr std::uint32_t kUsPerHour = static_cast<std::uint32_t>(kNsPerHour / kNs
 
 // The sentence region from offset 206 to the end of the payload: the text up to CR, LF or
 // NUL. The manual pads with NULs after CR/LF, so an all-NUL region means "no sentence".
-Result<std::string> ExtractSentence(std::span<const std::uint8_t> region) {
+Result<std::size_t> SentenceLength(std::span<const std::uint8_t> region) {
   const auto end = std::find_if(region.begin(), region.end(), [](std::uint8_t byte) {
     return byte == '\r' || byte == '\n' || byte == '\0';
   });
@@ -31,7 +31,7 @@ Result<std::string> ExtractSentence(std::span<const std::uint8_t> region) {
     return MakeError("position packet: NMEA sentence at offset " +
                      std::to_string(kPositionNmeaOffset) + " does not start with '$'");
   }
-  return std::string(region.begin(), end);
+  return length;
 }
 
 }  // namespace
@@ -66,11 +66,11 @@ Result<PositionPacket> DecodePositionPacket(std::span<const std::uint8_t> payloa
                      std::to_string(kPositionPpsStatusOffset) + ", expected 0-3");
   }
   packet.pps_status = static_cast<PpsStatus>(pps);
-  Result<std::string> sentence = ExtractSentence(payload.subspan(kPositionNmeaOffset));
-  if (!sentence) return sentence.error();
-  packet.nmea_sentence = std::move(sentence).value();
-  if (IsRmcSentence(packet.nmea_sentence)) {
-    Result<RmcFix> fix = ParseRmc(packet.nmea_sentence);
+  Result<std::size_t> length = SentenceLength(payload.subspan(kPositionNmeaOffset));
+  if (!length) return length.error();
+  packet.nmea_length = static_cast<std::uint16_t>(*length);
+  if (IsRmcSentence(packet.nmea_sentence())) {
+    Result<RmcFix> fix = ParseRmc(packet.nmea_sentence());
     if (!fix) return MakeError("position packet: " + fix.error().message);
     packet.rmc = *fix;
   }

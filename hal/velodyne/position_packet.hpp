@@ -40,9 +40,15 @@ enum class PpsStatus : std::uint8_t {
 struct PositionPacket {
   std::uint32_t us_past_hour = 0;          // when the sensor assembled the packet
   PpsStatus pps_status = PpsStatus::kAbsent;
-  std::string nmea_sentence;               // without CR/LF; empty when no GPS is attached
-  std::optional<RmcFix> rmc;               // set when nmea_sentence is an RMC sentence
+  std::uint16_t nmea_length = 0;           // sentence bytes at kPositionNmeaOffset of raw
+  std::optional<RmcFix> rmc;               // set when the sentence is an RMC sentence
   std::array<std::uint8_t, kPositionPacketSize> raw{};  // the payload as received
+
+  // The NMEA sentence without CR/LF; empty when no GPS is attached. A view into raw, so
+  // decoding and copying a packet never touches the heap.
+  std::string_view nmea_sentence() const {
+    return {reinterpret_cast<const char*>(raw.data()) + kPositionNmeaOffset, nmea_length};
+  }
 };
 
 // "absent", "synchronizing", "locked", "error".

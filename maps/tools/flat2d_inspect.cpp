@@ -13,6 +13,7 @@
 #include "hal/velodyne/calibration_yaml.hpp"
 #include "hal/velodyne/capture_summary.hpp"
 #include "hal/velodyne/capture_summary_json.hpp"
+#include "maps/tools/cli_args.hpp"
 #include "maps/tools/inspect_record_replay.hpp"
 #include "maps/tools/inspect_render.hpp"
 
@@ -49,16 +50,17 @@ struct Options {
   maps::TopDownOptions render;
 };
 
-[[noreturn]] void Fail(int status, const std::string& message) {
-  std::cerr << "flat2d-inspect: " << message << "\n";
-  std::exit(status);
-}
+constexpr std::string_view kTool = "flat2d-inspect";
+constexpr std::int64_t kMaxPort = 65535;
+
+[[noreturn]] void Fail(int status, const std::string& message) { maps::cli::Fail(kTool, status, message); }
 
 double ParseNumber(std::string_view flag, const char* text) {
-  char* end = nullptr;
-  const double value = std::strtod(text, &end);
-  if (end == text || *end != '\0') Fail(1, std::string(flag) + ": not a number: " + text);
-  return value;
+  return maps::cli::ParseNumber(kTool, flag, text);
+}
+
+std::uint16_t ParsePort(std::string_view flag, const char* text) {
+  return static_cast<std::uint16_t>(maps::cli::ParseInteger(kTool, flag, text, 0, kMaxPort));
 }
 
 Options ParseOptions(int argc, char** argv) {
@@ -83,13 +85,14 @@ Options ParseOptions(int argc, char** argv) {
     } else if (arg == "--cut-angle") {
       options.summary.stream.revolution.cut_azimuth_rad = ParseNumber(arg, value()) * 3.14159265358979323846 / 180.0;
     } else if (arg == "--data-port") {
-      options.summary.stream.data_port = static_cast<std::uint16_t>(ParseNumber(arg, value()));
+      options.summary.stream.data_port = ParsePort(arg, value());
     } else if (arg == "--position-port") {
-      options.summary.stream.position_port = static_cast<std::uint16_t>(ParseNumber(arg, value()));
+      options.summary.stream.position_port = ParsePort(arg, value());
     } else if (arg == "--png") {
       options.png = value();
     } else if (arg == "--revolution") {
-      options.summary.keep_revolution = static_cast<std::size_t>(ParseNumber(arg, value()));
+      options.summary.keep_revolution =
+          static_cast<std::size_t>(maps::cli::ParseInteger(kTool, arg, value(), 0, 1'000'000));
     } else if (arg == "--colour" || arg == "--color") {
       const std::string_view by = value();
       if (by != "height" && by != "intensity") Fail(1, "--colour takes height or intensity");

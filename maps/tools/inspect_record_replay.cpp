@@ -1,6 +1,7 @@
 #include "maps/tools/inspect_record_replay.hpp"
 
 #include <csignal>
+#include <cstdint>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "hal/net/udp_receiver.hpp"
 #include "hal/net/udp_sender.hpp"
 #include "hal/velodyne/packet_layout.hpp"
+#include "maps/tools/cli_args.hpp"
 
 namespace flat2d::maps {
 namespace {
@@ -24,22 +26,18 @@ using namespace flat2d::hal::net;
 volatile std::sig_atomic_t g_stop = 0;
 void OnSignal(int) { g_stop = 1; }
 
-[[noreturn]] void Fail(int status, const std::string& message) {
-  std::cerr << "flat2d-inspect: " << message << "\n";
-  std::exit(status);
-}
+constexpr std::string_view kTool = "flat2d-inspect";
 
-double Number(std::string_view flag, const char* text) {
-  char* end = nullptr;
-  const double value = std::strtod(text, &end);
-  if (end == text || *end != '\0') Fail(1, std::string(flag) + ": not a number: " + text);
-  return value;
-}
-
+[[noreturn]] void Fail(int status, const std::string& message) { cli::Fail(kTool, status, message); }
+double Number(std::string_view flag, const char* text) { return cli::ParseNumber(kTool, flag, text); }
 std::uint32_t Address(std::string_view flag, const std::string& text) {
-  const auto address = ParseIpv4(text);
-  if (!address) Fail(1, std::string(flag) + ": not an IPv4 address: " + text);
-  return *address;
+  return cli::ParseAddress(kTool, flag, text);
+}
+std::uint16_t Port(std::string_view flag, const char* text) {
+  return static_cast<std::uint16_t>(cli::ParseInteger(kTool, flag, text, 0, 65535));
+}
+std::uint64_t Count(std::string_view flag, const char* text) {
+  return static_cast<std::uint64_t>(cli::ParseInteger(kTool, flag, text, 0, INT64_MAX));
 }
 
 // Walks argv, handing each flag and its value to `on_flag`; returns the positional args.
@@ -96,7 +94,7 @@ int RunReplay(int argc, char** argv) {
     if (flag == "--to") {
       std::string to = value();
       if (const auto colon = to.find(':'); colon != std::string::npos) {
-        sender_options.destination.port = static_cast<std::uint16_t>(Number(flag, to.c_str() + colon + 1));
+        sender_options.destination.port = Port(flag, to.c_str() + colon + 1);
         sender_options.keep_datagram_port = false;
         to.resize(colon);
       }
@@ -104,7 +102,7 @@ int RunReplay(int argc, char** argv) {
     } else if (flag == "--speed") {
       replay_options.speed = Number(flag, value());
     } else if (flag == "--count") {
-      replay_options.max_datagrams = static_cast<std::uint64_t>(Number(flag, value()));
+      replay_options.max_datagrams = Count(flag, value());
     } else if (flag == "--all-ports") {
       replay_options.destination_ports.clear();
     } else {
@@ -137,13 +135,13 @@ int RunRecord(int argc, char** argv) {
   Parse(argc, argv, kRecordUsage, [&](std::string_view flag, auto value) {
     if (flag == "--out") out = value();
     else if (flag == "--bind") data_options.bind_address = Address(flag, value());
-    else if (flag == "--port") data_options.port = static_cast<std::uint16_t>(Number(flag, value()));
-    else if (flag == "--position-port") position_port = static_cast<std::uint16_t>(Number(flag, value()));
+    else if (flag == "--port") data_options.port = Port(flag, value());
+    else if (flag == "--position-port") position_port = Port(flag, value());
     else if (flag == "--multicast") data_options.multicast_group = Address(flag, value());
     else if (flag == "--source") data_options.source_filter = Address(flag, value());
-    else if (flag == "--rcvbuf") data_options.receive_buffer_bytes = static_cast<int>(Number(flag, value()));
+    else if (flag == "--rcvbuf") data_options.receive_buffer_bytes = static_cast<int>(cli::ParseInteger(kTool, flag, value(), 0, 1 << 30));
     else if (flag == "--seconds") seconds = Number(flag, value());
-    else if (flag == "--count") max_count = static_cast<std::uint64_t>(Number(flag, value()));
+    else if (flag == "--count") max_count = Count(flag, value());
     else return false;
     return true;
   });

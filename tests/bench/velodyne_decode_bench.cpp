@@ -12,6 +12,7 @@
 #include "hal/velodyne/packet_decoder.hpp"
 #include "hal/velodyne/velodyne_stream.hpp"
 #include "tests/testing/data_path.hpp"
+#include "tests/testing/velodyne_packet_builder.hpp"
 
 namespace {
 
@@ -29,13 +30,6 @@ std::vector<std::vector<std::uint8_t>> LoadDataPackets(const std::string& relati
     }
   }
   return packets;
-}
-
-void AdvanceTimestamp(std::vector<std::uint8_t>& packet, std::uint32_t by_us) {
-  const std::uint32_t now = (velodyne::ReadU32(packet.data() + velodyne::kTimestampOffset) + by_us) % 3'600'000'000u;
-  for (std::size_t i = 0; i < 4; ++i) {
-    packet[velodyne::kTimestampOffset + i] = static_cast<std::uint8_t>(now >> (8 * i));
-  }
 }
 
 void ReportLineRateMultiple(benchmark::State& state, std::size_t packets_done) {
@@ -88,7 +82,7 @@ void BM_StreamPackets(benchmark::State& state, const std::string& capture) {
     stream.Push(datagram);
     if (++index == packets.size()) {
       index = 0;
-      for (auto& packet : packets) AdvanceTimestamp(packet, lap_us);
+      for (auto& packet : packets) flat2d::testing::AdvanceDeviceTime(packet, lap_us);
     }
     ++done;
   }

@@ -47,6 +47,21 @@ DataPacketBuilder& DataPacketBuilder::FactoryBytes(std::uint8_t return_mode, std
   return *this;
 }
 
+void AdvanceDeviceTime(std::span<std::uint8_t> payload, std::uint32_t by_us) {
+  std::size_t offset = 0;
+  if (payload.size() == 1206) {
+    offset = 1200;
+  } else if (payload.size() == 512) {
+    offset = 198;
+  } else {
+    return;
+  }
+  std::uint32_t now = 0;
+  for (std::size_t i = 0; i < 4; ++i) now |= static_cast<std::uint32_t>(payload[offset + i]) << (8 * i);
+  now = static_cast<std::uint32_t>((static_cast<std::uint64_t>(now) + by_us) % 3'600'000'000u);
+  for (std::size_t i = 0; i < 4; ++i) payload[offset + i] = static_cast<std::uint8_t>(now >> (8 * i));
+}
+
 void DataPacketBuilder::Put16(std::size_t offset, std::uint16_t value) {
   bytes_[offset] = static_cast<std::uint8_t>(value & 0xFF);
   bytes_[offset + 1] = static_cast<std::uint8_t>(value >> 8);

@@ -29,4 +29,9 @@ class DataPacketBuilder {
   std::array<std::uint8_t, 1206> bytes_{};
 };
 
+// Moves the device timestamp of a data (1206-byte) or position (512-byte) payload on by
+// `by_us`, wrapping at the hour: replaying a short capture in laps without the laps looking
+// like jumps back in time. Other sizes are left alone.
+void AdvanceDeviceTime(std::span<std::uint8_t> payload, std::uint32_t by_us);
+
 }  // namespace flat2d::testing

@@ -1,28 +1,13 @@
 // UdpReceiver and UdpSender over loopback (127.0.0.0/8 only), with bounded waits.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <chrono>
-#include <cstdlib>
-#include <new>
 #include <thread>
 
 #include "hal/net/udp_receiver.hpp"
 #include "hal/net/udp_sender.hpp"
 #include "tests/hal/net/capture_images.hpp"
-
-// Counts heap allocations in this test binary, to show that ReceiveBatch makes none.
-namespace {
-std::atomic<std::uint64_t> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
-  throw std::bad_alloc();
-}
-void operator delete(void* memory) noexcept { std::free(memory); }
-void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
+#include "tests/testing/allocation_counter.hpp"
 
 namespace flat2d::hal::net {
 namespace {
@@ -179,11 +164,11 @@ TEST(UdpReceiver, ReceiveBatchDoesNotAllocate) {
   const testing::Bytes payload = testing::CountingPayload(1206);
   for (int i = 0; i < 20; ++i) ASSERT_TRUE(sender.SendPayload(payload));
   std::size_t received = 0;
-  const std::uint64_t allocations_before = g_allocations.load();
+  const std::uint64_t allocations_before = flat2d::testing::AllocationCount();
   for (int poll = 0; poll < kMaxPolls && received < 20; ++poll) {
     received += receiver.ReceiveBatch(kPollMs).size();
   }
-  const std::uint64_t allocations = g_allocations.load() - allocations_before;
+  const std::uint64_t allocations = flat2d::testing::AllocationCount() - allocations_before;
   EXPECT_EQ(received, 20u);
   EXPECT_EQ(allocations, 0u);
 }

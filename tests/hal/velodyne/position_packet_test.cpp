@@ -43,7 +43,7 @@ TEST(PositionPacket, DecodesTimestampPpsAndRmc) {
   EXPECT_EQ(packet->us_past_hour, 1'082'342'001u);
   EXPECT_EQ(packet->pps_status, PpsStatus::kLocked);
   EXPECT_EQ(PpsStatusName(packet->pps_status), "locked");
-  EXPECT_EQ(packet->nmea_sentence, kRmc);
+  EXPECT_EQ(packet->nmea_sentence(), kRmc);
   ASSERT_TRUE(packet->rmc.has_value());
   EXPECT_TRUE(packet->rmc->valid);
   EXPECT_EQ(packet->rmc->utc_time_ns, 1'453'364'282 * kNsPerSecond);
@@ -65,7 +65,7 @@ TEST(PositionPacket, NoGpsAttachedIsNotAnError) {
   const auto packet = DecodePositionPacket(MakePacket(3'599'999'999u, 0, ""));
   ASSERT_TRUE(packet.ok()) << packet.error().message;
   EXPECT_EQ(packet->us_past_hour, 3'599'999'999u);
-  EXPECT_TRUE(packet->nmea_sentence.empty());
+  EXPECT_TRUE(packet->nmea_sentence().empty());
   EXPECT_FALSE(packet->rmc.has_value());
 }
 
@@ -73,7 +73,7 @@ TEST(PositionPacket, NonRmcSentenceIsKeptWithoutFix) {
   const std::string gga = "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47";
   const auto packet = DecodePositionPacket(MakePacket(0, 2, gga + "\r\n"));
   ASSERT_TRUE(packet.ok()) << packet.error().message;
-  EXPECT_EQ(packet->nmea_sentence, gga);
+  EXPECT_EQ(packet->nmea_sentence(), gga);
   EXPECT_FALSE(packet->rmc.has_value());
 }
 
@@ -81,7 +81,7 @@ TEST(PositionPacket, SentenceEndedByNulOrBareLfDecodes) {
   for (const std::string& ending : {std::string(), std::string("\n"), std::string("\r")}) {
     const auto packet = DecodePositionPacket(MakePacket(0, 2, kRmc + ending));
     ASSERT_TRUE(packet.ok()) << packet.error().message;
-    EXPECT_EQ(packet->nmea_sentence, kRmc);
+    EXPECT_EQ(packet->nmea_sentence(), kRmc);
   }
 }
 
@@ -164,7 +164,7 @@ TEST(PositionPacket, FirstPacketOfTheMrptVlp16CaptureHasAFixOf2016_01_21) {
   ASSERT_EQ(payloads.size(), 57u) << pcap;  // PROVENANCE.md: 57 position packets
   const auto packet = DecodePositionPacket(payloads.front());
   ASSERT_TRUE(packet.ok()) << packet.error().message;
-  ASSERT_TRUE(packet->rmc.has_value()) << packet->nmea_sentence;
+  ASSERT_TRUE(packet->rmc.has_value()) << packet->nmea_sentence();
   EXPECT_EQ(packet->rmc->status, 'A');
   EXPECT_TRUE(packet->rmc->valid);
   // 2016-01-21 is day 46 * 365 + 11 + 20 = 16821 of the Unix epoch.
@@ -182,7 +182,7 @@ TEST(PositionPacket, Hdl32eCapturePacketsDecodeWithGyroBytesAndFeedTheClock) {
   for (const auto& payload : payloads) {
     const auto packet = DecodePositionPacket(payload);
     ASSERT_TRUE(packet.ok()) << packet.error().message;
-    ASSERT_TRUE(packet->rmc.has_value()) << packet->nmea_sentence;
+    ASSERT_TRUE(packet->rmc.has_value()) << packet->nmea_sentence();
     // HDL-32E: no PPS byte (reads 0); gyro/temperature/accelerometer words in bytes 14-37.
     EXPECT_EQ(packet->pps_status, PpsStatus::kAbsent);
     EXPECT_TRUE(std::any_of(packet->raw.begin() + 14, packet->raw.begin() + 38,
@@ -212,7 +212,7 @@ TEST(PositionPacket, Vlp16CaptureWithoutGpsHasNoSentence) {
   for (const auto& payload : payloads) {
     const auto packet = DecodePositionPacket(payload);
     ASSERT_TRUE(packet.ok()) << packet.error().message;
-    EXPECT_TRUE(packet->nmea_sentence.empty());
+    EXPECT_TRUE(packet->nmea_sentence().empty());
     EXPECT_FALSE(packet->rmc.has_value());
   }
 }

@@ -1,0 +1,20 @@
+// Small helpers shared by the command-line tools: failing with a message and an exit
+// status, and parsing option values with range checks.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace flat2d::maps::cli {
+
+// Prints "<tool>: <message>" to stderr and exits with `status`.
+[[noreturn]] void Fail(std::string_view tool, int status, const std::string& message);
+
+// The value of option `flag`, or Fail(1) naming the flag and the text.
+double ParseNumber(std::string_view tool, std::string_view flag, const char* text);
+std::int64_t ParseInteger(std::string_view tool, std::string_view flag, const char* text,
+                          std::int64_t min, std::int64_t max);
+std::uint32_t ParseAddress(std::string_view tool, std::string_view flag, const std::string& text);
+
+}  // namespace flat2d::maps::cli
