@@ -181,5 +181,54 @@ TEST(PacketDecoder, MaximumDistanceDecodesWithoutOverflow) {
   EXPECT_EQ(packet.fans[0].returns[0].intensity, 255);
 }
 
+// Every model in every return mode: fan count, return kinds, firing times and the point
+// count, from the manuals' tables (block period 110.592 / 46.080 / 55.296 us).
+struct ModeCase {
+  Model model;
+  std::uint8_t mode_byte;
+  int fans;
+  std::int64_t firing_period_ns;
+};
+
+class EveryModelAndMode : public ::testing::TestWithParam<ModeCase> {};
+
+TEST_P(EveryModelAndMode, FansKindsAndStamps) {
+  const ModeCase& c = GetParam();
+  const bool dual = c.mode_byte == kDual;
+  DataPacketBuilder builder(c.mode_byte, 0x22);
+  for (int block = 0; block < 12; ++block) {
+    builder.BlockAzimuth(block, 100 + (dual ? block / 2 : block) * 20);
+    builder.Record(block, 1, static_cast<std::uint16_t>(1000 + block), 7);
+  }
+  const DecodedPacket packet = Decode(c.model, builder.bytes());
+  ASSERT_EQ(packet.error, PacketError::kNone);
+  EXPECT_EQ(packet.num_fans, c.fans);
+  EXPECT_EQ(packet.num_points, 12);
+  const int fans_per_firing = c.fans / (dual ? 6 : 12);
+  for (int f = 0; f < packet.num_fans; ++f) {
+    const Fan& fan = packet.fans[static_cast<std::size_t>(f)];
+    const int firing = f / fans_per_firing;
+    const int sequence = dual ? (f % fans_per_firing) / 2 : f % fans_per_firing;
+    EXPECT_EQ(fan.stamp_ns, firing * c.firing_period_ns + sequence * 55'296) << "fan " << f;
+    const ReturnKind expected_kind = c.mode_byte == kStrongest ? ReturnKind::kStrongest
+                                     : c.mode_byte == kLast    ? ReturnKind::kLast
+                                     : f % 2 == 0              ? ReturnKind::kLast
+                                                               : ReturnKind::kStrongest;
+    EXPECT_EQ(fan.kind, expected_kind) << "fan " << f;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Velodyne, EveryModelAndMode,
+    ::testing::Values(ModeCase{Model::kVlp16, kStrongest, 24, 110'592},
+                      ModeCase{Model::kVlp16, kLast, 24, 110'592},
+                      ModeCase{Model::kVlp16, kDual, 24, 110'592},
+                      ModeCase{Model::kHdl32e, kStrongest, 12, 46'080},
+                      ModeCase{Model::kHdl32e, kLast, 12, 46'080},
+                      ModeCase{Model::kHdl32e, kDual, 12, 46'080},
+                      ModeCase{Model::kVlp32c, kStrongest, 12, 55'296},
+                      ModeCase{Model::kVlp32c, kLast, 12, 55'296},
+                      ModeCase{Model::kVlp32c, kDual, 12, 55'296}));
+
 }  // namespace
 }  // namespace flat2d::hal::velodyne
