@@ -68,6 +68,7 @@ void WriteCounts(std::ostringstream& out, const CaptureSummary& summary) {
   out << "\"capture\":{\"frames\":" << c.frames << ",\"udp_datagrams\":" << c.udp_datagrams
       << ",\"non_udp\":" << c.non_udp << ",\"fragments\":" << c.fragments
       << ",\"truncated_frames\":" << c.truncated_frames
+      << ",\"ipv4_length_overruns\":" << c.ipv4_length_overruns
       << ",\"file_truncated\":" << (c.file_truncated ? "true" : "false");
   if (c.file_truncated) out << ",\"file_error\":" << Quote(c.file_error);
   out << "},";

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "hal/velodyne/firing_timing.hpp"
 #include "hal/velodyne/packet_layout.hpp"
@@ -29,6 +30,14 @@ std::string Describe(const char* format, auto... args) {
   return buffer;
 }
 
+std::uint8_t MostVoted(const std::array<std::uint8_t, 256>& votes) {
+  std::size_t best = 0;
+  for (std::size_t value = 1; value < votes.size(); ++value) {
+    if (votes[value] > votes[best]) best = value;
+  }
+  return static_cast<std::uint8_t>(best);
+}
+
 bool Contains(const std::vector<Model>& models, Model model) {
   for (Model m : models) {
     if (m == model) return true;
@@ -42,11 +51,15 @@ ModelIdentifier::ModelIdentifier(std::optional<Model> configured) : configured_(
 
 void ModelIdentifier::Observe(std::span<const std::uint8_t> payload) {
   if (payload.size() != kDataPacketSize) return;
+  if (observed_ == std::numeric_limits<std::uint8_t>::max()) return;  // votes are bytes
   ++observed_;
-  product_id_ = payload[kProductIdOffset];
-  return_mode_byte_ = payload[kReturnModeOffset];
+  ++product_id_votes_[payload[kProductIdOffset]];
+  ++return_mode_votes_[payload[kReturnModeOffset]];
   for (std::size_t block = 0; block < kBlocksPerPacket; ++block) {
-    if (ReadU16(payload.data() + block * kBlockSize) != kBlockFlag) foreign_block_flags_ = true;
+    if (ReadU16(payload.data() + block * kBlockSize) != kBlockFlag) {
+      ++foreign_block_flag_packets_;
+      break;
+    }
   }
   const std::uint32_t now = ReadU32(payload.data() + kTimestampOffset);
   if (last_us_past_hour_ && now < kUsPerHour && *last_us_past_hour_ < kUsPerHour) {
@@ -56,19 +69,24 @@ void ModelIdentifier::Observe(std::span<const std::uint8_t> payload) {
   last_us_past_hour_ = now;
 }
 
+std::uint8_t ModelIdentifier::product_id() const { return MostVoted(product_id_votes_); }
+
 Result<Identification> ModelIdentifier::Decide() const {
   if (observed_ == 0) return MakeError("no Velodyne data packets (1206-byte payloads) seen");
-  const std::optional<Model> by_id = ModelFromProductId(product_id_);
-  if (!configured_ && (!by_id || foreign_block_flags_)) {
-    std::string message = "unsupported Velodyne model: " + ProductIdName(product_id_) +
-                          Describe(" (product id 0x%02x)", product_id_);
-    if (foreign_block_flags_) message += "; its blocks carry flags other than 0xFFEE";
+  const std::uint8_t product = product_id();
+  const bool foreign_layout = 2 * foreign_block_flag_packets_ > observed_;
+  const std::optional<Model> by_id = ModelFromProductId(product);
+  if (!configured_ && (!by_id || foreign_layout)) {
+    std::string message = "unsupported Velodyne model: " + ProductIdName(product) +
+                          Describe(" (product id 0x%02x)", product);
+    if (foreign_layout) message += "; its blocks carry flags other than 0xFFEE";
     return MakeError(message + "; flat2d decodes VLP-16, HDL-32E and VLP-32C");
   }
 
   Identification id;
-  id.product_id = product_id_;
-  id.return_mode = ReturnModeFromByte(return_mode_byte_).value_or(ReturnMode::kStrongest);
+  id.product_id = product;
+  id.return_mode =
+      ReturnModeFromByte(MostVoted(return_mode_votes_)).value_or(ReturnMode::kStrongest);
   std::vector<Model> by_timing;
   if (min_step_us_) {
     id.packet_period_us = static_cast<double>(*min_step_us_);
@@ -87,8 +105,8 @@ Result<Identification> ModelIdentifier::Decide() const {
   }
 
   if (by_id != id.model) {
-    id.disagreements.push_back(Describe("product id 0x%02x names %s, decoding as %s", product_id_,
-                                        ProductIdName(product_id_).c_str(),
+    id.disagreements.push_back(Describe("product id 0x%02x names %s, decoding as %s", product,
+                                        ProductIdName(product).c_str(),
                                         std::string(ModelName(id.model)).c_str()));
   }
   if (min_step_us_ && !by_timing.empty() && !Contains(by_timing, id.model)) {

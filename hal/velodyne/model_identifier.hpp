@@ -7,9 +7,11 @@
 // identifier measures the smallest device-time step between consecutive packets and
 // compares it with each model's period. Precedence: configured model, else the product
 // id if the timing does not contradict it, else the model the timing names. Every
-// disagreement is reported.
+// disagreement is reported. The product id and block layout are decided by majority over
+// the observed packets, so one corrupted packet at start-up cannot misidentify a stream.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -41,7 +43,8 @@ class ModelIdentifier {
   void Observe(std::span<const std::uint8_t> payload);
   bool ReadyToDecide() const { return observed_ >= kPacketsToDecide; }
   int observed() const { return observed_; }
-  std::uint8_t product_id() const { return product_id_; }
+  // The most frequent product id so far.
+  std::uint8_t product_id() const;
 
   // The decision from what was observed, or an Error naming an unsupported model.
   Result<Identification> Decide() const;
@@ -49,9 +52,9 @@ class ModelIdentifier {
  private:
   std::optional<Model> configured_;
   int observed_ = 0;
-  std::uint8_t product_id_ = 0;
-  std::uint8_t return_mode_byte_ = 0;
-  bool foreign_block_flags_ = false;
+  std::array<std::uint8_t, 256> product_id_votes_{};
+  std::array<std::uint8_t, 256> return_mode_votes_{};
+  int foreign_block_flag_packets_ = 0;
   std::optional<std::uint32_t> last_us_past_hour_;
   std::optional<std::uint32_t> min_step_us_;
 };

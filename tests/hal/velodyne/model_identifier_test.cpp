@@ -84,6 +84,19 @@ TEST(ModelIdentifier, UnsupportedModelIsNamed) {
   EXPECT_NE(unknown.Decide().error().message.find("unknown (0x5a)"), std::string::npos);
 }
 
+TEST(ModelIdentifier, OneCorruptedPacketDoesNotDecide) {
+  ModelIdentifier identifier;
+  for (std::uint32_t i = 0; i < 4; ++i) {
+    DataPacketBuilder packet(0x37, i == 1 ? 0x99 : 0x22);
+    if (i == 2) packet.BlockFlag(5, 0x12, 0x34);
+    identifier.Observe(packet.Timestamp(i * 1327).bytes());
+  }
+  const auto id = identifier.Decide();
+  ASSERT_TRUE(id.ok()) << id.error().message;
+  EXPECT_EQ(id->model, Model::kVlp16);
+  EXPECT_EQ(id->product_id, 0x22);
+}
+
 TEST(ModelIdentifier, NothingObservedIsAnError) {
   ModelIdentifier identifier;
   std::array<std::uint8_t, 100> short_payload{};
