@@ -135,17 +135,26 @@ void PacketDecoder::Decode(std::span<const std::uint8_t> payload, DecodedPacket&
 
 // Equations of the manuals' 9.2 with the driver calibration's offsets; returns the
 // number of channel records with a return.
+void PacketDecoder::UpdateChannelAzimuths(int gap_units) {
+  const float gap = static_cast<float>(gap_units);
+  for (std::size_t c = 0; c < channels_.size(); ++c) {
+    const ChannelConstants& k = channels_[c];
+    channel_azimuth_units_[c] = static_cast<int>(gap * k.block_fraction + 0.5f) + k.azimuth_offset_units;
+  }
+  channel_azimuth_gap_ = gap_units;
+}
+
 int PacketDecoder::DecodeBlock(const std::uint8_t* block, int gap_units,
-                               const std::array<Fan*, 2>& fans) const {
+                               const std::array<Fan*, 2>& fans) {
+  if (gap_units != channel_azimuth_gap_) UpdateChannelAzimuths(gap_units);
   const int block_azimuth = ReadU16(block + 2);
   const std::uint8_t* record = block + kBlockHeaderSize;
-  const float gap = static_cast<float>(gap_units);
   int points = 0;
-  for (const ChannelConstants& k : channels_) {
+  for (std::size_t c = 0; c < channels_.size(); ++c) {
+    const ChannelConstants& k = channels_[c];
     LaserReturn& r = fans[static_cast<std::size_t>(k.fan_in_block)]->returns[static_cast<std::size_t>(k.laser_id)];
     const int raw_distance = ReadU16(record);
-    const int azimuth = WrapUnits(block_azimuth + static_cast<int>(gap * k.block_fraction + 0.5f) +
-                                  k.azimuth_offset_units);
+    const int azimuth = WrapUnits(block_azimuth + channel_azimuth_units_[c]);
     r.azimuth_rad = static_cast<float>(azimuth * kUnitsToRad);
     r.time_offset_ns = k.time_offset_ns;
     r.intensity = record[2];

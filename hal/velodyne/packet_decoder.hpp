@@ -69,7 +69,8 @@ class PacketDecoder {
 
   PacketError Validate(std::span<const std::uint8_t> payload) const;
   int AzimuthGapUnits(const std::uint8_t* payload, int block, int block_step);
-  int DecodeBlock(const std::uint8_t* block, int gap_units, const std::array<Fan*, 2>& fans) const;
+  int DecodeBlock(const std::uint8_t* block, int gap_units, const std::array<Fan*, 2>& fans);
+  void UpdateChannelAzimuths(int gap_units);
 
   LaserTable table_;
   FiringTiming timing_;
@@ -78,6 +79,10 @@ class PacketDecoder {
   std::vector<float> cos_table_, sin_table_;  // by azimuth in hundredths of a degree
   int max_gap_units_ = 0;   // larger gaps are jumps, not rotation (2x the 20 Hz gap)
   int last_gap_units_ = 0;  // last plausible block-to-block azimuth gap
+  // Per channel: interpolation for `channel_azimuth_gap_` plus the laser's azimuth offset.
+  // The gap rarely changes between blocks, so this is recomputed rarely.
+  int channel_azimuth_gap_ = -1;
+  std::array<int, 32> channel_azimuth_units_{};
 };
 
 }  // namespace flat2d::hal::velodyne
