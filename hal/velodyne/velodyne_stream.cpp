@@ -1,5 +1,6 @@
 #include "hal/velodyne/velodyne_stream.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>

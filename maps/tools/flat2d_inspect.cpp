@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -83,7 +84,7 @@ Options ParseOptions(int argc, char** argv) {
     } else if (arg == "--calibration") {
       options.calibration = value();
     } else if (arg == "--cut-angle") {
-      options.summary.stream.revolution.cut_azimuth_rad = ParseNumber(arg, value()) * 3.14159265358979323846 / 180.0;
+      options.summary.stream.revolution.cut_azimuth_rad = ParseNumber(arg, value()) * std::numbers::pi / 180.0;
     } else if (arg == "--data-port") {
       options.summary.stream.data_port = ParsePort(arg, value());
     } else if (arg == "--position-port") {
