@@ -119,9 +119,10 @@ TEST_F(StreamFixture, IdentifiesTheModelFromTheFirstPackets) {
 
 TEST(VelodyneStream, ShortStreamIsDecidedAtFinish) {
   VelodyneStream stream({});
+  const DataPacketBuilder packet = Vlp16Packet(0);  // outlives the datagram's view of it
   net::UdpDatagram datagram;
   datagram.destination.port = kDefaultDataPort;
-  datagram.payload = Vlp16Packet(0).bytes();
+  datagram.payload = packet.bytes();
   stream.Push(datagram);
   stream.Finish();
   ASSERT_TRUE(stream.identification().has_value());
