@@ -370,5 +370,36 @@ TEST(CanOdometryReal, CivicDriveIsPlausible) {
   EXPECT_LT(distance, 9.6 / 3.6 * 65.5);  // never faster than the top speed
 }
 
+// The Scion xB log is heavily decimated and its wheel speeds are in no DBC we have: only
+// SPEED (0xB4) decodes with the Toyota DBC. A speed-only configuration dead-reckons it
+// straight ahead, and SPEED's checksum holds.
+TEST(CanOdometryReal, ScionSpeedOnlyLogIsPlausible) {
+  FLAT2D_REQUIRE_DATA(dbc, kRav4Dbc);
+  FLAT2D_REQUIRE_DATA(log, "can/eldominio_candump/xb__trymph.log");
+  OdometryConfig config;
+  auto* speed = config.mutable_mapping()->mutable_vehicle_speed();
+  speed->set_message("SPEED");
+  speed->set_signal("SPEED");
+  speed->set_unit("km/h");
+  config.mutable_dead_reckoning()->set_wheel_base_m(2.63);
+  config.mutable_dead_reckoning()->set_track_m(1.49);
+  config.mutable_dead_reckoning()->set_max_gap_s(1.0);
+  const LogRun run = RunLog(dbc, log, config);
+  double top_speed = 0.0;
+  for (const auto& m : run.measurements) {
+    if (!m.vehicle_speed_mps) continue;
+    EXPECT_GE(*m.vehicle_speed_mps, 0.0);
+    top_speed = std::max(top_speed, *m.vehicle_speed_mps);
+  }
+  std::printf("Scion xB: %zu SPEED frames, top %.2f km/h, %llu checksums checked, %llu gaps\n",
+              run.measurements.size(), top_speed * 3.6,
+              static_cast<unsigned long long>(run.decoder.checksum_checked),
+              static_cast<unsigned long long>(run.dead_reckoning.gaps));
+  EXPECT_NEAR(top_speed * 3.6, 94.55, 0.01);  // PROVENANCE.md: SPEED 0-94.55 km/h
+  EXPECT_EQ(run.decoder.checksum_failures, 0u);
+  EXPECT_EQ(run.decoder.checksum_checked, run.measurements.size());
+  EXPECT_NEAR(run.samples.back().local_T_vehicle.theta(), 0.0, 1e-12);  // no yaw source
+}
+
 }  // namespace
 }  // namespace flat2d::localization
