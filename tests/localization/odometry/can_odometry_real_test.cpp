@@ -1,6 +1,6 @@
 // Real vehicle CAN logs through the shipped odometry configurations, checked for what
 // could be wrong: against comma2k19's own decode and GNSS-fused trajectory of the same RAV4
-// drive, and for physical plausibility on the other logs. Figures are printed so the
+// drive (other vehicles: can_odometry_vehicles_test.cpp). Figures are printed so the
 // closing notes can quote them.
 #include "localization/odometry/can_odometry.hpp"
 
@@ -11,69 +11,14 @@
 
 #include <gtest/gtest.h>
 
-#include "hal/can/candump_log.hpp"
-#include "localization/odometry/odometry_config.hpp"
+#include "tests/localization/odometry/can_log_run.hpp"
 #include "tests/testing/data_path.hpp"
 #include "tests/testing/npy.hpp"
 
 namespace flat2d::localization {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-constexpr char kRav4Dbc[] = "can/toyota_rav4h_comma2k19/toyota_rav4_hybrid_2017_pt_generated.dbc";
-constexpr char kRav4Log[] = "can/toyota_rav4h_comma2k19/DERIVED_comma2k19_rav4h_seg40_bus0.candump.log";
-constexpr char kComma[] = "can/toyota_rav4h_comma2k19/b0c9d2329ad1606b_2018-08-02--08-34-47_seg40/";
-
-std::filesystem::path ShippedConfig(const char* name) {
-  return std::filesystem::path(FLAT2D_SOURCE_DIR) / "packaging/config/odometry" / name;
-}
-
-// Every sample of a log run through CanOdometry, with what the mapper decoded.
-struct LogRun {
-  std::vector<OdometrySample> samples;
-  std::vector<hal::can::OdometryMeasurement> measurements;
-  hal::can::FrameDecoderStats decoder;
-  DeadReckoningStats dead_reckoning;
-  double yaw_rate_bias_radps = 0.0;  // configured or learnt, at the end
-};
-
-LogRun RunLog(const std::filesystem::path& dbc_path, const std::filesystem::path& log_path,
-           OdometryConfig config) {
-  LogRun run;
-  auto dbc = hal::can::LoadDbc(dbc_path);
-  EXPECT_TRUE(dbc.ok()) << (dbc.ok() ? "" : dbc.error().message);
-  auto odometry = dbc.ok() ? CanOdometry::Create(*dbc, config) : Result<CanOdometry>(dbc.error());
-  EXPECT_TRUE(odometry.ok()) << (odometry.ok() ? "" : odometry.error().message);
-  auto reader = hal::can::CandumpReader::Open(log_path);
-  EXPECT_TRUE(reader.ok());
-  if (!odometry.ok() || !reader.ok()) return run;
-  hal::can::CanFrame frame;
-  while (reader->Next(frame)) {
-    const auto update = odometry->Push(frame);
-    if (!update) continue;
-    run.measurements.push_back(odometry->last_measurement());
-    if (update->new_sample()) run.samples.push_back(update->sample);
-  }
-  run.decoder = odometry->mapper().decoder_stats();
-  run.dead_reckoning = odometry->dead_reckoning().stats();
-  run.yaw_rate_bias_radps = odometry->dead_reckoning().yaw_rate_bias_radps();
-  return run;
-}
-
-OdometryConfig LoadShipped(const char* name) {
-  auto config = LoadOdometryConfig(ShippedConfig(name));
-  EXPECT_TRUE(config.ok()) << (config.ok() ? "" : config.error().message);
-  return config.ok() ? *config : OdometryConfig{};
-}
-
-double PathLength(const std::vector<OdometrySample>& samples, TimeNs from, TimeNs to) {
-  double length = 0.0;
-  for (std::size_t i = 1; i < samples.size(); ++i) {
-    if (samples[i - 1].time_ns < from || samples[i].time_ns > to) continue;
-    length += (samples[i].local_T_vehicle.translation() - samples[i - 1].local_T_vehicle.translation()).norm();
-  }
-  return length;
-}
+using namespace test;
 
 // comma's fused trajectory: times, path length, and course (direction of the velocity,
 // counter-clockwise from east) unwrapped, in a local east-north frame at the first pose.
@@ -294,111 +239,6 @@ TEST(CanOdometryReal, Rav4SignalsArePhysicallyConsistent) {
   EXPECT_NEAR(distance / rear_integral, 1.0, 0.001);
   EXPECT_GT(speed_integral / rear_integral, 1.0);
   EXPECT_LT(speed_integral / rear_integral, 1.04);
-}
-
-// Every shipped odometry configuration parses and gives valid options.
-TEST(CanOdometryReal, ShippedConfigurationsAreValid) {
-  int configs = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(ShippedConfig(""))) {
-    if (entry.path().extension() != ".textproto") continue;
-    auto config = LoadOdometryConfig(entry.path());
-    EXPECT_TRUE(config.ok()) << entry.path() << ": " << (config.ok() ? "" : config.error().message);
-    ++configs;
-  }
-  EXPECT_GE(configs, 2);
-}
-
-// A second Toyota (strym's RAV4 2019 DBC) on a surface-street drive with stops: the same
-// shipped mapping decodes it, checksums hold, and the yaw-rate bias is learnt at the stops.
-TEST(CanOdometryReal, VerifiedCanToyotaDriveIsPlausible) {
-  FLAT2D_REQUIRE_DATA(dbc, "can/toyota_verifiedcan/strym_toyota_rav4_2019.dbc");
-  FLAT2D_REQUIRE_DATA(log, "can/toyota_verifiedcan/DERIVED_verifiedcan_toyota_2020-02-03-14-31-11.candump.log");
-  const LogRun run = RunLog(dbc, log, LoadShipped("toyota_rav4_hybrid_2017.textproto"));
-  EXPECT_EQ(run.decoder.checksum_failures, 0u);
-  EXPECT_EQ(run.decoder.checksum_checked, 1527u + 2703u + 1202u);
-  double top_speed = 0.0, rear_integral = 0.0, previous_t = -1.0, previous_rear = 0.0;
-  for (const auto& m : run.measurements) {
-    if (!m.wheel_speeds) continue;
-    const auto& w = *m.wheel_speeds;
-    for (double v : {w.front_left_mps, w.front_right_mps, w.rear_left_mps, w.rear_right_mps}) {
-      EXPECT_GE(v, 0.0);
-      top_speed = std::max(top_speed, v);
-    }
-    const double t = static_cast<double>(m.time_ns) * 1e-9;
-    const double rear = 0.5 * (w.rear_left_mps + w.rear_right_mps);
-    if (previous_t >= 0.0 && t - previous_t < 0.2) rear_integral += 0.5 * (previous_rear + rear) * (t - previous_t);
-    previous_t = t;
-    previous_rear = rear;
-  }
-  const double distance = PathLength(run.samples, run.samples.front().time_ns, run.samples.back().time_ns);
-  std::printf("VerifiedCAN Toyota: top wheel speed %.1f km/h, distance %.1f m (rear-wheel integral %.1f m), "
-              "%llu standstill steps, yaw-rate bias learnt %.3f deg/s, %llu gaps\n",
-              top_speed * 3.6, distance, rear_integral,
-              static_cast<unsigned long long>(run.dead_reckoning.standstill_steps),
-              run.yaw_rate_bias_radps * kRadToDeg,
-              static_cast<unsigned long long>(run.dead_reckoning.gaps));
-  EXPECT_NEAR(top_speed * 3.6, 47.1, 0.5);  // PROVENANCE.md: wheel speeds 0-47.1 km/h
-  EXPECT_GT(run.dead_reckoning.standstill_steps, 0u);
-  EXPECT_GT(run.dead_reckoning.bias_updates, 0u);
-  EXPECT_NEAR(distance / rear_integral, 1.0, 0.02);
-}
-
-// The Honda FK8: wheel speeds only, heading from the wheels, Honda checksums verified.
-TEST(CanOdometryReal, CivicDriveIsPlausible) {
-  FLAT2D_REQUIRE_DATA(dbc, "can/eldominio_candump/honda_civic_hatchback_ex_2017_can_generated.dbc");
-  FLAT2D_REQUIRE_DATA(log, "can/eldominio_candump/civic_19_type_r__turnonanddrive.log");
-  const LogRun run = RunLog(dbc, log, LoadShipped("honda_civic_2017.textproto"));
-  EXPECT_EQ(run.decoder.checksum_checked, 803u);
-  EXPECT_EQ(run.decoder.checksum_failures, 0u);
-  double top_speed = 0.0;
-  std::size_t sets = 0;
-  for (const auto& m : run.measurements) {
-    if (!m.wheel_speeds) continue;
-    ++sets;
-    for (double v : {m.wheel_speeds->front_left_mps, m.wheel_speeds->front_right_mps,
-                     m.wheel_speeds->rear_left_mps, m.wheel_speeds->rear_right_mps}) {
-      EXPECT_GE(v, 0.0);
-      top_speed = std::max(top_speed, v);
-    }
-  }
-  const double distance = PathLength(run.samples, run.samples.front().time_ns, run.samples.back().time_ns);
-  std::printf("Civic: %zu wheel-speed sets, top %.2f km/h, distance %.1f m, heading change %.1f deg\n", sets,
-              top_speed * 3.6, distance, run.samples.back().local_T_vehicle.theta() * kRadToDeg);
-  EXPECT_EQ(sets, 803u);
-  EXPECT_NEAR(top_speed * 3.6, 9.6, 0.1);  // PROVENANCE.md: 0-9.6 km/h on all four wheels
-  EXPECT_GT(distance, 1.0);
-  EXPECT_LT(distance, 9.6 / 3.6 * 65.5);  // never faster than the top speed
-}
-
-// The Scion xB log is heavily decimated and its wheel speeds are in no DBC we have: only
-// SPEED (0xB4) decodes with the Toyota DBC. A speed-only configuration dead-reckons it
-// straight ahead, and SPEED's checksum holds.
-TEST(CanOdometryReal, ScionSpeedOnlyLogIsPlausible) {
-  FLAT2D_REQUIRE_DATA(dbc, kRav4Dbc);
-  FLAT2D_REQUIRE_DATA(log, "can/eldominio_candump/xb__trymph.log");
-  OdometryConfig config;
-  auto* speed = config.mutable_mapping()->mutable_vehicle_speed();
-  speed->set_message("SPEED");
-  speed->set_signal("SPEED");
-  speed->set_unit("km/h");
-  config.mutable_dead_reckoning()->set_wheel_base_m(2.63);
-  config.mutable_dead_reckoning()->set_track_m(1.49);
-  config.mutable_dead_reckoning()->set_max_gap_s(1.0);
-  const LogRun run = RunLog(dbc, log, config);
-  double top_speed = 0.0;
-  for (const auto& m : run.measurements) {
-    if (!m.vehicle_speed_mps) continue;
-    EXPECT_GE(*m.vehicle_speed_mps, 0.0);
-    top_speed = std::max(top_speed, *m.vehicle_speed_mps);
-  }
-  std::printf("Scion xB: %zu SPEED frames, top %.2f km/h, %llu checksums checked, %llu gaps\n",
-              run.measurements.size(), top_speed * 3.6,
-              static_cast<unsigned long long>(run.decoder.checksum_checked),
-              static_cast<unsigned long long>(run.dead_reckoning.gaps));
-  EXPECT_NEAR(top_speed * 3.6, 94.55, 0.01);  // PROVENANCE.md: SPEED 0-94.55 km/h
-  EXPECT_EQ(run.decoder.checksum_failures, 0u);
-  EXPECT_EQ(run.decoder.checksum_checked, run.measurements.size());
-  EXPECT_NEAR(run.samples.back().local_T_vehicle.theta(), 0.0, 1e-12);  // no yaw source
 }
 
 }  // namespace
