@@ -31,7 +31,7 @@ RawEncoding ClampedInteger(double scaled, std::uint8_t length, bool is_signed) {
 }
 
 RawEncoding Float32Bits(double scaled) {
-  constexpr double kMax = std::numeric_limits<float>::max();
+  constexpr double kMax = static_cast<double>(std::numeric_limits<float>::max());
   EncodeStatus status = EncodeStatus::kOk;
   if (std::fabs(scaled) > kMax && std::isfinite(scaled)) {
     scaled = std::copysign(kMax, scaled);
