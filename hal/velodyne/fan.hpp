@@ -34,6 +34,7 @@ struct Fan {
   float azimuth_rad = 0.0f;   // fan azimuth before per-laser offsets
   ReturnKind kind = ReturnKind::kStrongest;
   std::uint8_t num_lasers = 0;
+  std::uint8_t num_points = 0;  // returns with a non-zero range, counted by the decoder
   std::array<LaserReturn, kMaxLasers> returns{};  // indexed by laser id
 };
 

@@ -6,11 +6,11 @@
 
 #include "hal/velodyne/firing_timing.hpp"
 #include "hal/velodyne/packet_layout.hpp"
+#include "hal/velodyne/sensor_clock.hpp"
 
 namespace flat2d::hal::velodyne {
 namespace {
 
-constexpr std::uint32_t kUsPerHour = 3'600'000'000u;
 // Device clocks and the manuals' periods agree to well under 1 %.
 constexpr double kPeriodTolerance = 0.02;
 
@@ -62,9 +62,9 @@ void ModelIdentifier::Observe(std::span<const std::uint8_t> payload) {
     }
   }
   const std::uint32_t now = ReadU32(payload.data() + kTimestampOffset);
-  if (last_us_past_hour_ && now < kUsPerHour && *last_us_past_hour_ < kUsPerHour) {
-    const std::uint32_t step = (now + kUsPerHour - *last_us_past_hour_) % kUsPerHour;
-    if (step > 0 && (!min_step_us_ || step < *min_step_us_)) min_step_us_ = step;
+  if (last_us_past_hour_) {
+    const std::int64_t step = DeviceStepUs(*last_us_past_hour_, now);
+    if (step > 0 && (!min_step_us_ || step < *min_step_us_)) min_step_us_ = static_cast<std::uint32_t>(step);
   }
   last_us_past_hour_ = now;
 }

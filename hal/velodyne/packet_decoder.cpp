@@ -21,6 +21,10 @@ int WrapUnits(int units) {
   return units;
 }
 
+std::size_t ScheduleIndex(ReturnMode mode) {
+  return static_cast<std::size_t>(static_cast<std::uint8_t>(mode) - static_cast<std::uint8_t>(ReturnMode::kStrongest));
+}
+
 int BlockAzimuth(const std::uint8_t* payload, int block) {
   return ReadU16(payload + static_cast<std::size_t>(block) * kBlockSize + 2);
 }
@@ -41,6 +45,9 @@ std::string_view PacketErrorName(PacketError error) {
 PacketDecoder::PacketDecoder(const LaserTable& table)
     : table_(table),
       timing_(TimingFor(table.model)),
+      schedules_{FiringSchedule(table.model, ReturnMode::kStrongest),
+                 FiringSchedule(table.model, ReturnMode::kLast),
+                 FiringSchedule(table.model, ReturnMode::kDual)},
       distance_resolution_m_(static_cast<float>(table.distance_resolution_m)),
       cos_table_(kUnitsPerTurn),
       sin_table_(kUnitsPerTurn) {
@@ -103,29 +110,22 @@ void PacketDecoder::Decode(std::span<const std::uint8_t> payload, DecodedPacket&
   out.return_mode = *ReturnModeFromByte(bytes[kReturnModeOffset]);
   out.product_id = bytes[kProductIdOffset];
 
-  const bool dual = out.return_mode == ReturnMode::kDual;
-  const int block_step = dual ? 2 : 1;
+  const FiringSchedule& schedule = schedules_[ScheduleIndex(out.return_mode)];
+  const int block_step = out.return_mode == ReturnMode::kDual ? 2 : 1;
   const int fans_per_block = timing_.fans_per_block;
-  // Dual mode interleaves the two returns of each firing so fan stamps never decrease.
-  const int fan_stride = dual ? 2 : 1;
   for (int block = 0; block < static_cast<int>(kBlocksPerPacket); ++block) {
-    const int firing = dual ? block / 2 : block;
-    const int first_fan = dual ? firing * fans_per_block * 2 + block % 2 : block * fans_per_block;
-    const ReturnKind kind = (dual && block % 2 == 0) || out.return_mode == ReturnMode::kLast
-                                ? ReturnKind::kLast
-                                : ReturnKind::kStrongest;
     const int gap = AzimuthGapUnits(bytes, block, block_step);
     const int azimuth = BlockAzimuth(bytes, block);
     std::array<Fan*, 2> fans{};
     for (int f = 0; f < fans_per_block; ++f) {
-      Fan& fan = out.fans[static_cast<std::size_t>(first_fan + f * fan_stride)];
-      const double start_us = firing * timing_.block_period_us +
-                              timing_.channel_offset_us[static_cast<std::size_t>(f * timing_.lasers_per_fan)];
-      fan.stamp_ns = std::llround(start_us * 1e3);
+      const ChannelFiring& first = schedule.At(block, f * timing_.lasers_per_fan);
+      Fan& fan = out.fans[static_cast<std::size_t>(first.fan)];
+      fan.stamp_ns = std::llround(first.time_offset_us * 1e3);
       fan.azimuth_rad = static_cast<float>(
           WrapUnits(azimuth + (gap * f) / fans_per_block) * kUnitsToRad);
-      fan.kind = kind;
+      fan.kind = schedule.KindOfBlock(block);
       fan.num_lasers = static_cast<std::uint8_t>(timing_.lasers_per_fan);
+      fan.num_points = 0;
       fans[static_cast<std::size_t>(f)] = &fan;
     }
     out.num_points += DecodeBlock(bytes + static_cast<std::size_t>(block) * kBlockSize, gap, fans);
@@ -169,6 +169,7 @@ int PacketDecoder::DecodeBlock(const std::uint8_t* block, int gap_units,
     const float cos_azimuth = cos_table_[static_cast<std::size_t>(azimuth)];
     const float sin_azimuth = sin_table_[static_cast<std::size_t>(azimuth)];
     r.range_m = range;
+    ++fans[static_cast<std::size_t>(k.fan_in_block)]->num_points;
     r.xyz = Eigen::Vector3f(horizontal * cos_azimuth + k.horizontal_offset_m * sin_azimuth,
                             -horizontal * sin_azimuth + k.horizontal_offset_m * cos_azimuth,
                             range * k.sin_elevation + k.vertical_offset_m * k.cos_elevation);

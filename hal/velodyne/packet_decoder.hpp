@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "hal/velodyne/fan.hpp"
+#include "hal/velodyne/firing_schedule.hpp"
 #include "hal/velodyne/firing_timing.hpp"
 #include "hal/velodyne/laser_table.hpp"
 #include "hal/velodyne/model.hpp"
@@ -74,6 +75,7 @@ class PacketDecoder {
 
   LaserTable table_;
   FiringTiming timing_;
+  std::array<FiringSchedule, 3> schedules_;  // by return mode: strongest, last, dual
   float distance_resolution_m_;
   std::array<ChannelConstants, 32> channels_{};
   std::vector<float> cos_table_, sin_table_;  // by azimuth in hundredths of a degree

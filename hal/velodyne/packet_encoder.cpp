@@ -5,7 +5,6 @@
 #include <string>
 
 #include "hal/common/time.hpp"
-#include "hal/velodyne/firing_timing.hpp"
 
 namespace flat2d::hal::velodyne {
 namespace {
@@ -70,32 +69,6 @@ std::uint16_t RawDistance(double range_m, const LaserTable& table, int laser_id)
   const double units = std::round((range_m - offset) / table.distance_resolution_m);
   if (units < 1.0 || units > kMaxRawDistance) return 0;
   return static_cast<std::uint16_t>(units);
-}
-
-// Mirrors PacketDecoder::Decode: firing index, fan index (dual mode interleaves the two
-// returns of a firing) and the channel's offset within its block from firing_timing.hpp.
-FiringSchedule::FiringSchedule(Model model, ReturnMode mode) {
-  const FiringTiming timing = TimingFor(model);
-  const bool dual = mode == ReturnMode::kDual;
-  const int blocks = static_cast<int>(kBlocksPerPacket);
-  firings_per_packet_ = dual ? blocks / 2 : blocks;
-  fans_per_block_ = timing.fans_per_block;
-  block_period_us_ = timing.block_period_us;
-  const int fan_stride = dual ? 2 : 1;
-  for (int block = 0; block < static_cast<int>(kBlocksPerPacket); ++block) {
-    const int firing = FiringOfBlock(block);
-    const int first_fan = dual ? firing * fans_per_block_ * 2 + block % 2 : block * fans_per_block_;
-    kinds_[static_cast<std::size_t>(block)] =
-        (dual && block % 2 == 0) || mode == ReturnMode::kLast ? ReturnKind::kLast
-                                                               : ReturnKind::kStrongest;
-    for (int c = 0; c < static_cast<int>(kChannelsPerBlock); ++c) {
-      ChannelFiring& f = firings_[static_cast<std::size_t>(block)][static_cast<std::size_t>(c)];
-      f.time_offset_us = firing * timing.block_period_us +
-                         timing.channel_offset_us[static_cast<std::size_t>(c)];
-      f.fan = first_fan + (c / timing.lasers_per_fan) * fan_stride;
-      f.laser_id = c % timing.lasers_per_fan;
-    }
-  }
 }
 
 }  // namespace flat2d::hal::velodyne

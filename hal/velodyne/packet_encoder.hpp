@@ -7,9 +7,9 @@
 // reflectivity), the timestamp in microseconds past the hour and the two factory bytes.
 // Steps: validate (azimuth below 36000, known return mode, timestamp below one hour); write
 // each block's flag FF EE, little-endian azimuth and records; write the timestamp and the
-// factory bytes. Two helpers give the simulator what the decoder assumes: RawDistance (the
-// inverse of range = raw x resolution + dist_correction, manuals 9.2) and FiringSchedule
-// (firing time, fan and laser of every record, from firing_timing.hpp, manuals 9.4).
+// factory bytes. RawDistance gives the simulator what the decoder assumes (the inverse of
+// range = raw x resolution + dist_correction, manuals 9.2); where and when each record
+// fires is firing_schedule.hpp's, which the decoder uses too.
 // Encoding allocates nothing; failure is an Error, never a malformed packet.
 #pragma once
 
@@ -17,7 +17,6 @@
 #include <cstdint>
 
 #include "hal/common/error.hpp"
-#include "hal/velodyne/fan.hpp"
 #include "hal/velodyne/laser_table.hpp"
 #include "hal/velodyne/model.hpp"
 #include "hal/velodyne/packet_layout.hpp"
@@ -46,38 +45,5 @@ Result<DataPacketBytes> EncodeDataPacket(const DataPacketContent& content);
 // (0 <= laser_id < table.num_lasers): round((range - dist_correction) / resolution). 0 (no
 // return) for a non-finite range or one that rounds below 1 unit or above 65535 units.
 std::uint16_t RawDistance(double range_m, const LaserTable& table, int laser_id);
-
-// Where and when the decoder places one channel record.
-struct ChannelFiring {
-  double time_offset_us = 0.0;  // firing time after the packet timestamp
-  int fan = 0;                  // index into DecodedPacket::fans
-  int laser_id = 0;             // index into Fan::returns and LaserTable::lasers
-};
-
-// For one model and return mode, the firing of every (block, channel) as PacketDecoder
-// assumes it: in dual-return mode blocks 2k and 2k+1 hold the last and the strongest return
-// of firing k.
-class FiringSchedule {
- public:
-  FiringSchedule(Model model, ReturnMode mode);
-
-  const ChannelFiring& At(int block, int channel) const {
-    return firings_[static_cast<std::size_t>(block)][static_cast<std::size_t>(channel)];
-  }
-  ReturnKind KindOfBlock(int block) const { return kinds_[static_cast<std::size_t>(block)]; }
-  // Firings per packet: 12, or 6 in dual-return mode (consecutive blocks share a firing).
-  int firings() const { return firings_per_packet_; }
-  // Firing index (0..firings()-1) of a block: the block azimuth is the azimuth of it.
-  int FiringOfBlock(int block) const { return firings_per_packet_ == 12 ? block : block / 2; }
-  int fans_per_block() const { return fans_per_block_; }
-  double block_period_us() const { return block_period_us_; }
-
- private:
-  std::array<std::array<ChannelFiring, kChannelsPerBlock>, kBlocksPerPacket> firings_{};
-  std::array<ReturnKind, kBlocksPerPacket> kinds_{};
-  int firings_per_packet_ = 12;
-  int fans_per_block_ = 1;
-  double block_period_us_ = 0.0;
-};
 
 }  // namespace flat2d::hal::velodyne

@@ -16,14 +16,6 @@ double WrapPositive(double angle) {
   return angle < 0.0 ? angle + kTwoPi : angle;
 }
 
-int CountPoints(const Fan& fan) {
-  int points = 0;
-  for (int laser = 0; laser < fan.num_lasers; ++laser) {
-    if (fan.returns[static_cast<std::size_t>(laser)].range_m > 0.0f) ++points;
-  }
-  return points;
-}
-
 }  // namespace
 
 std::size_t MaxFansPerRevolution(Model model, ReturnMode mode, double rotation_hz) {
@@ -67,7 +59,7 @@ const Revolution* RevolutionAssembler::Add(std::span<const Fan> fans) {
       continue;
     }
     current.fans.push_back(fan);
-    current.points += CountPoints(fan);
+    current.points += fan.num_points;
   }
   return completed;
 }

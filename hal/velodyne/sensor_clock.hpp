@@ -34,6 +34,10 @@ namespace flat2d::hal::velodyne {
 // `us_past_hour` (taken modulo the hour); a tie at half an hour goes to the later time.
 TimeNs ResolveHourRelative(std::uint32_t us_past_hour, TimeNs reference_ns);
 
+// Signed step in microseconds from one hour-relative device time to the next, taking the
+// hour wrap the short way round (3,599,999,000 -> 500 is +1,500).
+std::int64_t DeviceStepUs(std::uint32_t previous_us_past_hour, std::uint32_t us_past_hour);
+
 enum class TimeSource : std::uint8_t { kGps, kHost, kSensorOnly };
 
 // "gps", "host", "sensor-only".

@@ -10,16 +10,7 @@
 namespace flat2d::hal::velodyne {
 namespace {
 
-constexpr std::int64_t kUsPerHour = 3'600'000'000LL;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-// Signed device-time step in microseconds, taking the hour wrap the short way round.
-std::int64_t DeviceStepUs(std::uint32_t previous, std::uint32_t now) {
-  std::int64_t step = (static_cast<std::int64_t>(now) - previous) % kUsPerHour;
-  if (step > kUsPerHour / 2) step -= kUsPerHour;
-  if (step < -kUsPerHour / 2) step += kUsPerHour;
-  return step;
-}
 
 double ForwardAngle(float from, float to) {
   const double delta = std::fmod(static_cast<double>(to) - static_cast<double>(from), kTwoPi);

@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/hal/can/test_signal.hpp"
+
 #include "hal/can/signal_decoder.hpp"
 
 namespace flat2d::hal::can {
@@ -22,18 +24,7 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-DbcSignal Signal(std::uint16_t start, std::uint8_t length, bool intel, bool is_signed, double factor = 1.0,
-                 double offset = 0.0) {
-  DbcSignal signal;
-  signal.name = std::string(1, 'S');  // not = "S": GCC 12 -O3 -Wrestrict false positive
-  signal.start_bit = start;
-  signal.length = length;
-  signal.little_endian = intel;
-  signal.is_signed = is_signed;
-  signal.factor = factor;
-  signal.offset = offset;
-  return signal;
-}
+using test::Signal;
 
 CompiledSignalEncoder Compile(const DbcSignal& signal) {
   auto compiled = CompiledSignalEncoder::Compile(signal);

@@ -1,6 +1,7 @@
 // The data packet encoder against the decoder (every model x return mode), against the
 // test-only byte builder, and byte for byte against real captures.
 #include "hal/velodyne/packet_encoder.hpp"
+#include "hal/velodyne/firing_schedule.hpp"
 
 #include <algorithm>
 #include <cctype>

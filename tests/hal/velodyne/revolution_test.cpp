@@ -16,7 +16,10 @@ Fan MakeFan(double azimuth_deg, TimeNs stamp, bool with_return = true) {
   fan.azimuth_rad = static_cast<float>(azimuth_deg * kDeg);
   fan.stamp_ns = stamp;
   fan.num_lasers = 16;
-  if (with_return) fan.returns[3].range_m = 5.0f;
+  if (with_return) {
+    fan.returns[3].range_m = 5.0f;
+    fan.num_points = 1;
+  }
   return fan;
 }
 
