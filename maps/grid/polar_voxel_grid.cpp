@@ -1,0 +1,45 @@
+#include "maps/grid/polar_voxel_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace flat2d::maps {
+
+namespace {
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+}  // namespace
+
+PolarVoxelGrid::PolarVoxelGrid(const PolarGridLayout& layout, float band_height_m)
+    : layout_(layout),
+      band_height_m_(band_height_m),
+      columns_(static_cast<std::size_t>(layout.azimuth_bins) *
+               static_cast<std::size_t>(layout.range_bins)) {}
+
+bool PolarVoxelGrid::Add(const Eigen::Vector3f& point) {
+  const double x = point.x();
+  const double y = point.y();
+  return Add(std::atan2(y, x), std::hypot(x, y), point.z());
+}
+
+bool PolarVoxelGrid::Add(double azimuth_rad, double range_m, float z) {
+  if (!std::isfinite(azimuth_rad) || !std::isfinite(z)) return false;
+  const double range_bin = std::floor(range_m / layout_.range_resolution_m);
+  if (!(range_bin >= 0.0 && range_bin < layout_.range_bins)) return false;
+  double turns = azimuth_rad / kTwoPi;
+  turns -= std::floor(turns);  // [0, 1)
+  const int azimuth_bin =
+      std::min(static_cast<int>(turns * layout_.azimuth_bins), layout_.azimuth_bins - 1);
+  AddHeight(columns_[Offset({azimuth_bin, static_cast<int>(range_bin)})], z, band_height_m_);
+  return true;
+}
+
+void PolarVoxelGrid::Clear() { std::fill(columns_.begin(), columns_.end(), VoxelColumn{}); }
+
+Eigen::Vector2d PolarVoxelGrid::BinCenter(const PolarBin& bin) const {
+  const double azimuth = (bin.azimuth + 0.5) * kTwoPi / layout_.azimuth_bins;
+  const double range = (bin.range + 0.5) * layout_.range_resolution_m;
+  return range * Eigen::Vector2d(std::cos(azimuth), std::sin(azimuth));
+}
+
+}  // namespace flat2d::maps
