@@ -4,10 +4,9 @@
 
 namespace flat2d::maps {
 
-int FillIn(const ClassifiedFan& previous, const ClassifiedFan& current, const FillInOptions& options,
-           ClassGrid& grid) {
+int FillIn(const ClassifiedFan& previous, const ClassifiedFan& current, double max_gap_m, ClassGrid& grid) {
   const std::size_t lasers = std::min(previous.classes.size(), current.classes.size());
-  const double max_gap_squared = options.max_gap_m * options.max_gap_m;
+  const double max_gap_squared = max_gap_m * max_gap_m;
   int drawn = 0;
   for (std::size_t laser = 0; laser < lasers; ++laser) {
     const CellClass cell_class = current.classes[laser];

@@ -24,13 +24,8 @@ struct ClassifiedFan {
   std::span<const CellClass> classes;
 };
 
-struct FillInOptions {
-  double max_gap_m = 0.25;
-};
-
-// Draws the fill-in segments between `previous` and `current` (same laser count) into grid;
-// returns how many segments it drew.
-int FillIn(const ClassifiedFan& previous, const ClassifiedFan& current, const FillInOptions& options,
-           ClassGrid& grid);
+// Draws the fill-in segments, shorter than max_gap_m, between `previous` and `current` (same
+// laser count) into grid; returns how many segments it drew.
+int FillIn(const ClassifiedFan& previous, const ClassifiedFan& current, double max_gap_m, ClassGrid& grid);
 
 }  // namespace flat2d::maps

@@ -72,14 +72,12 @@ TEST(HoleFillIn, JoinsSameClassReturnsCloserThanTheBound) {
   const std::array previous_class{CellClass::kSlammable, CellClass::kHazard, CellClass::kSlammable};
   const std::array current_class{CellClass::kSlammable, CellClass::kSlammable, CellClass::kSlammable};
   // Laser 0: same class, 0.2 m apart: joined. Laser 1: classes differ. Laser 2: 0.6 m apart.
-  const int drawn = FillIn({previous_xy, previous_class}, {current_xy, current_class}, {}, grid);
+  const int drawn = FillIn({previous_xy, previous_class}, {current_xy, current_class}, 0.25, grid);
   EXPECT_EQ(drawn, 1);
   EXPECT_EQ(grid.at(*grid.geometry().CellOf({2.0, 0.1})), CellClass::kSlammable);
   EXPECT_EQ(grid.at(*grid.geometry().CellOf({3.0, 0.1})), CellClass::kUnknown);
   EXPECT_EQ(grid.at(*grid.geometry().CellOf({4.0, 0.3})), CellClass::kUnknown);
-  FillInOptions wide;
-  wide.max_gap_m = 0.7;
-  EXPECT_EQ(FillIn({previous_xy, previous_class}, {current_xy, current_class}, wide, grid), 2);
+  EXPECT_EQ(FillIn({previous_xy, previous_class}, {current_xy, current_class}, 0.7, grid), 2);
   EXPECT_EQ(grid.at(*grid.geometry().CellOf({4.0, 0.3})), CellClass::kSlammable);
 }
 
@@ -89,7 +87,7 @@ TEST(HoleFillIn, FreeReturnsAreNotJoinedAndNothingAllocates) {
   const std::array<Eigen::Vector2d, 1> b{Eigen::Vector2d(1.0, 1.2)};
   const std::array free{CellClass::kFree};
   const auto before = testing::AllocationCount();
-  EXPECT_EQ(FillIn({a, free}, {b, free}, {}, grid), 0);
+  EXPECT_EQ(FillIn({a, free}, {b, free}, 0.25, grid), 0);
   grid.MarkLine(a[0], b[0], CellClass::kHazard);
   EXPECT_EQ(testing::AllocationCount(), before);
 }
