@@ -1,22 +1,10 @@
 #include "hal/velodyne/revolution.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include "hal/velodyne/firing_timing.hpp"
 
 namespace flat2d::hal::velodyne {
-namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kWrapThresholdRad = std::numbers::pi / 2.0;
-
-double WrapPositive(double angle) {
-  angle = std::fmod(angle, kTwoPi);
-  return angle < 0.0 ? angle + kTwoPi : angle;
-}
-
-}  // namespace
 
 std::size_t MaxFansPerRevolution(Model model, ReturnMode mode, double rotation_hz) {
   const double fans_per_packet = 12.0 * TimingFor(model).fans_per_block;
@@ -26,34 +14,23 @@ std::size_t MaxFansPerRevolution(Model model, ReturnMode mode, double rotation_h
 
 RevolutionAssembler::RevolutionAssembler(const RevolutionOptions& options, Model model,
                                          ReturnMode mode)
-    : cut_azimuth_rad_(WrapPositive(options.cut_azimuth_rad)),
+    : cut_(options.cut_azimuth_rad),
       capacity_(options.max_fans > 0
                     ? options.max_fans
                     : MaxFansPerRevolution(model, mode, options.min_rotation_hz)) {
   for (Revolution& revolution : buffers_) revolution.fans.reserve(capacity_);
 }
 
-bool RevolutionAssembler::Wraps(float azimuth_rad) {
-  const double relative = WrapPositive(static_cast<double>(azimuth_rad) - cut_azimuth_rad_);
-  const double step = relative - previous_relative_rad_;
-  const bool wraps = have_previous_ && step < -kWrapThresholdRad;
-  Revolution& current = buffers_[filling_];
-  if (have_previous_ && !wraps && step > 0.0 && step < kWrapThresholdRad) {
-    current.swept_azimuth_rad += step;
-  }
-  previous_relative_rad_ = relative;
-  have_previous_ = true;
-  return wraps;
-}
-
 const Revolution* RevolutionAssembler::Add(std::span<const Fan> fans) {
   const Revolution* completed = nullptr;
   for (const Fan& fan : fans) {
-    if (Wraps(fan.azimuth_rad)) {
+    const AzimuthStep step = cut_.Next(fan.azimuth_rad);
+    if (step.wraps) {
       completed = Publish(started_at_cut_);
       started_at_cut_ = true;
     }
     Revolution& current = buffers_[filling_];
+    current.swept_azimuth_rad += step.forward_step_rad;
     if (current.fans.size() == capacity_) {
       ++current.dropped_fans;
       continue;
@@ -68,7 +45,7 @@ const Revolution* RevolutionAssembler::Flush() {
   if (buffers_[filling_].fans.empty()) return nullptr;
   const Revolution* partial = Publish(false);
   started_at_cut_ = false;
-  have_previous_ = false;
+  cut_.Reset();
   return partial;
 }
 

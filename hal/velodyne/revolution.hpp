@@ -3,11 +3,8 @@
 //
 // Two revolution buffers are allocated at construction (sized from the worst case of
 // the model and return mode at the slowest rotation, see MaxFansPerRevolution) and
-// swapped at each cut, so steady-state assembly allocates nothing. A wrap is a backward
-// step of the azimuth (relative to the cut) of more than 90 degrees: jitter and the two
-// returns of a dual-return firing never trigger it, a FOV-limited sensor whose azimuth
-// jumps inside a packet does only when the jump crosses the cut. Fans that do not fit
-// are dropped and counted.
+// swapped at each cut (azimuth_cut.hpp says what a wrap is), so steady-state assembly
+// allocates nothing. Fans that do not fit are dropped and counted.
 #pragma once
 
 #include <cstddef>
@@ -16,6 +13,7 @@
 #include <vector>
 
 #include "hal/common/time.hpp"
+#include "hal/velodyne/azimuth_cut.hpp"
 #include "hal/velodyne/fan.hpp"
 #include "hal/velodyne/model.hpp"
 
@@ -61,15 +59,12 @@ class RevolutionAssembler {
 
  private:
   const Revolution* Publish(bool complete);
-  bool Wraps(float azimuth_rad);
 
-  double cut_azimuth_rad_;
+  AzimuthCut cut_;
   std::size_t capacity_;
   Revolution buffers_[2];
   int filling_ = 0;
   bool started_at_cut_ = false;
-  bool have_previous_ = false;
-  double previous_relative_rad_ = 0.0;
   std::uint64_t next_sequence_ = 0;
 };
 
