@@ -10,14 +10,13 @@
 
 #include "hal/config/text_proto.hpp"
 #include "maps/grid/structure_grid_config.hpp"
+#include "tests/maps/grid/wall_scene.hpp"
 #include "tests/testing/allocation_counter.hpp"
 
 namespace flat2d::maps {
 namespace {
 
 namespace velodyne = hal::velodyne;
-constexpr double kPi = std::numbers::pi;
-constexpr double kWallX = 10.0;  // a 3 m tall wall across x = 10 m, |y| < 8 m (grid frame)
 
 StructureGridOptions Options(StructureGridOptions::Method method, bool fill_in = true) {
   StructureGridOptions options;
@@ -27,49 +26,6 @@ StructureGridOptions Options(StructureGridOptions::Method method, bool fill_in =
   options.set_method(method);
   options.mutable_fill_in()->set_enabled(fill_in);
   return options;
-}
-
-// Where a ray from `origin` along `direction` (grid frame) first meets the ground (z = 0) or
-// the wall; nullopt beyond 100 m.
-std::optional<double> CastInScene(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
-  std::optional<double> best;
-  if (direction.z() < 0.0) best = -origin.z() / direction.z();
-  if (direction.x() > 0.0) {
-    const double t = (kWallX - origin.x()) / direction.x();
-    const Eigen::Vector3d hit = origin + t * direction;
-    if (std::abs(hit.y()) < 8.0 && hit.z() >= 0.0 && hit.z() < 3.0 && (!best || t < *best)) best = t;
-  }
-  if (best && *best > 100.0) return std::nullopt;
-  return best;
-}
-
-// A VLP-16 revolution of 1800 fans; fan k is fired with the vehicle at grid_T_vehicle(k).
-template <typename Pose>
-std::vector<velodyne::Fan> Revolution(const StructureGridOptions& options, Pose grid_T_vehicle) {
-  const velodyne::LaserTable table = velodyne::DefaultLaserTable(velodyne::Model::kVlp16);
-  const Eigen::Isometry3d vehicle_T_sensor = VehicleFromSensor(options.mounting());
-  std::vector<velodyne::Fan> fans(1800);
-  for (std::size_t k = 0; k < fans.size(); ++k) {
-    const Eigen::Isometry2d pose2 = grid_T_vehicle(k);
-    Eigen::Isometry3d grid_T_vehicle3 = Eigen::Isometry3d::Identity();
-    grid_T_vehicle3.linear().topLeftCorner<2, 2>() = pose2.linear();
-    grid_T_vehicle3.translation().head<2>() = pose2.translation();
-    const Eigen::Isometry3d grid_T_sensor = grid_T_vehicle3 * vehicle_T_sensor;
-    velodyne::Fan& fan = fans[k];
-    fan.num_lasers = static_cast<std::uint8_t>(table.num_lasers);
-    const double azimuth = 2.0 * kPi * static_cast<double>(k) / static_cast<double>(fans.size());
-    for (int laser = 0; laser < table.num_lasers; ++laser) {
-      const double elevation = table.lasers[static_cast<std::size_t>(laser)].elevation_rad;
-      const Eigen::Vector3d direction(std::cos(elevation) * std::cos(azimuth),
-                                      std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
-      const auto t = CastInScene(grid_T_sensor.translation(), grid_T_sensor.linear() * direction);
-      if (!t) continue;
-      velodyne::LaserReturn& r = fan.returns[static_cast<std::size_t>(laser)];
-      r.range_m = static_cast<float>(*t);
-      r.xyz = (*t * direction).cast<float>();
-    }
-  }
-  return fans;
 }
 
 const ClassGrid& Build(StructureGridBuilder& builder, const std::vector<velodyne::Fan>& fans,
@@ -119,7 +75,7 @@ TEST(StructureGridBuilder, SlopeMethodFindsTheWallAndTheFreeGround) {
     const StructureGridOptions options = Options(StructureGridOptions::METHOD_SLOPE, fill_in);
     auto builder = StructureGridBuilder::Create(velodyne::DefaultLaserTable(velodyne::Model::kVlp16), options);
     ASSERT_TRUE(builder.ok()) << builder.error().message;
-    const WallStats stats = Measure(Build(*builder, Revolution(options, Static), Static));
+    const WallStats stats = Measure(Build(*builder, WallSceneRevolution(options, Static), Static));
     const int rows = static_cast<int>(8.0 / options.resolution_m());  // |y| < 4 m
     EXPECT_EQ(stats.off_wall, 0) << "fill_in " << fill_in;
     EXPECT_GE(stats.free_ground, 0.95) << "fill_in " << fill_in;
@@ -134,7 +90,7 @@ TEST(StructureGridBuilder, PopcountMethodsFindTheWall) {
     const StructureGridOptions options = Options(method);
     auto builder = StructureGridBuilder::Create(velodyne::DefaultLaserTable(velodyne::Model::kVlp16), options);
     ASSERT_TRUE(builder.ok()) << builder.error().message;
-    const ClassGrid& grid = Build(*builder, Revolution(options, Static), Static);
+    const ClassGrid& grid = Build(*builder, WallSceneRevolution(options, Static), Static);
     const WallStats stats = Measure(grid);
     EXPECT_GT(stats.wall_rows, 8.0 / options.resolution_m() / 2) << method;
     // Polar bins are 0.2 deg wide (3.5 cm at 10 m) but centred on the bin, so a wall cell may
@@ -153,7 +109,7 @@ TEST(StructureGridBuilder, MotionCompensationKeepsTheWallSharp) {
   auto moving = [](std::size_t k) {
     return Eigen::Isometry2d(Eigen::Translation2d(static_cast<double>(k) / 1800.0, 0.0));
   };
-  const auto fans = Revolution(options, moving);
+  const auto fans = WallSceneRevolution(options, moving);
   auto builder = StructureGridBuilder::Create(velodyne::DefaultLaserTable(velodyne::Model::kVlp16), options);
   ASSERT_TRUE(builder.ok());
   const WallStats compensated = Measure(Build(*builder, fans, moving));
@@ -166,7 +122,7 @@ TEST(StructureGridBuilder, BuildingARevolutionAllocatesNothing) {
   for (const auto method : {StructureGridOptions::METHOD_SLOPE, StructureGridOptions::METHOD_CARTESIAN_POPCOUNT,
                             StructureGridOptions::METHOD_POLAR_POPCOUNT}) {
     const StructureGridOptions options = Options(method);
-    const auto fans = Revolution(options, Static);
+    const auto fans = WallSceneRevolution(options, Static);
     auto builder = StructureGridBuilder::Create(velodyne::DefaultLaserTable(velodyne::Model::kVlp16), options);
     ASSERT_TRUE(builder.ok());
     const auto before = testing::AllocationCount();
