@@ -38,15 +38,7 @@ class IntegralImage {
   std::vector<std::int64_t> sums_;
 };
 
-bool IsFace(const ClassGrid& truth, const CellIndex& cell) {
-  if (truth.at(cell) != CellClass::kSlammable) return false;
-  const CellIndex neighbours[] = {{cell.col - 1, cell.row}, {cell.col + 1, cell.row}, {cell.col, cell.row - 1},
-                                  {cell.col, cell.row + 1}};
-  for (const CellIndex& n : neighbours) {
-    if (truth.geometry().Contains(n) && truth.at(n) != CellClass::kSlammable) return true;
-  }
-  return false;
-}
+constexpr CellIndex kDirections[] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
 
 }  // namespace
 
@@ -80,13 +72,23 @@ StructureComparison CompareStructure(const ClassGrid& grid, const ClassGrid& tru
     }
   }
 
-  // Recall over the faces the grid could have seen.
+  // Recall over the faces the grid could have seen: those with observed cells in front of
+  // them, on a side where the truth is open.
   const IntegralImage found(t, grid_structure);
   const IntegralImage seen(t, observed);
+  const int r = options.observed_radius_cells;
   for (int row = 0; row < t.height; ++row) {
     for (int col = 0; col < t.width; ++col) {
       const CellIndex cell{col, row};
-      if (!IsFace(truth, cell) || seen.BoxSum(cell, options.observed_radius_cells) == 0) continue;
+      if (truth.at(cell) != CellClass::kSlammable) continue;
+      bool visible = false;
+      for (const CellIndex& d : kDirections) {
+        const CellIndex open{col + d.col, row + d.row};
+        if (!t.Contains(open) || truth.at(open) == CellClass::kSlammable) continue;
+        const CellIndex front{col + (r + 1) * d.col, row + (r + 1) * d.row};
+        visible = visible || seen.BoxSum(front, r) > 0;
+      }
+      if (!visible) continue;
       ++result.truth_faces;
       result.truth_matched += found.BoxSum(cell, options.tolerance_cells) > 0;
     }

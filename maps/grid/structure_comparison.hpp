@@ -5,8 +5,11 @@
 //   cell within `tolerance` cells (Chebyshev distance, in the truth's cells).
 // recall: of the truth's structure faces the drive could see, the fraction with a grid
 //   slammable cell within `tolerance`. A face is an occupied truth cell with a non-occupied
-//   4-neighbour (building interiors are never seen); it could be seen when the grid observed
-//   (any class but unknown) some cell within `observed_radius` cells of it.
+//   4-neighbour; it could be seen when the grid observed (any class but unknown) a cell in
+//   front of it on that open side: within `observed_radius` cells of the point
+//   observed_radius + 1 cells out. So the back of a wall, whose front the drive saw, does not
+//   count as missed structure, nor does a building's far side (a looser "observed anywhere
+//   within 1 m" would count both: walls are thinner than that).
 // Both grids are in one world frame; grid cells are mapped to the truth cell holding their
 // centre, so resolutions and origins may differ. Box queries use integral images: linear time.
 #pragma once
@@ -19,7 +22,7 @@ namespace flat2d::maps {
 
 struct StructureComparisonOptions {
   int tolerance_cells = 1;
-  int observed_radius_cells = 20;  // 1 m at 5 cm
+  int observed_radius_cells = 2;  // 10 cm at 5 cm: thinner than any wall
 };
 
 struct StructureComparison {
