@@ -1,0 +1,128 @@
+#include "localization/tools/grid_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <utility>
+
+#include "hal/net/datagram_source.hpp"
+#include "maps/grid/revolution_gridder.hpp"
+#include "maps/grid/structure_grid_config.hpp"
+
+namespace flat2d::localization {
+namespace {
+
+using hal::velodyne::Fan;
+using hal::velodyne::Revolution;
+
+// Consumes the gridder's published grids: keeps the wanted one or accumulates them all.
+class GridCollector {
+ public:
+  GridCollector(const GridRunOptions& options, GridRunResult& result) : options_(options), result_(result) {
+    if (options.accumulate) {
+      const double margin = options.grid.size_m() / 2.0;
+      accumulator_.emplace(CoveringGeometry(options.poses, options.grid.resolution_m(), margin),
+                           options.accumulation);
+    }
+  }
+
+  void Take(const maps::PublishedGrid* published) {
+    if (published == nullptr) return;
+    result_.fans_without_pose += static_cast<std::uint64_t>(published->fans_without_pose);
+    if (!published->complete) return;
+    const std::uint64_t index = result_.grids_complete++;
+    if (accumulator_) {
+      // A revolution outside the poses' time span has no frame to vote in.
+      if (published->fans_without_pose > 0) return;
+      accumulator_->Add(*published->grid, published->local_T_grid);
+      ++result_.grids_accumulated;
+    } else if (index == static_cast<std::uint64_t>(options_.revolution)) {
+      result_.grid = *published->grid;
+      result_.frame_T_grid = published->local_T_grid;
+      result_.grid_start_ns = published->start_ns;
+      result_.grid_end_ns = published->end_ns;
+    }
+  }
+
+  void Finish() {
+    if (accumulator_ && result_.grids_accumulated > 0) result_.grid = accumulator_->Result();
+  }
+
+ private:
+  const GridRunOptions& options_;
+  GridRunResult& result_;
+  std::optional<maps::GridAccumulator> accumulator_;
+};
+
+}  // namespace
+
+maps::GridGeometry CoveringGeometry(const std::vector<maps::StampedPose2d>& poses,
+                                    double resolution_m, double margin_m) {
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d high = -low;
+  for (const maps::StampedPose2d& pose : poses) {
+    low = low.cwiseMin(pose.position);
+    high = high.cwiseMax(pose.position);
+  }
+  if (poses.empty()) low = high = Eigen::Vector2d::Zero();
+  low -= Eigen::Vector2d::Constant(margin_m);
+  high += Eigen::Vector2d::Constant(margin_m);
+  maps::GridGeometry geometry;
+  geometry.resolution_m = resolution_m;
+  // Cell edges on multiples of the resolution, so grids of one frame share cell borders.
+  geometry.origin = (low / resolution_m).array().floor() * resolution_m;
+  geometry.width = static_cast<int>(std::ceil((high.x() - geometry.origin.x()) / resolution_m));
+  geometry.height = static_cast<int>(std::ceil((high.y() - geometry.origin.y()) / resolution_m));
+  return geometry;
+}
+
+Result<GridRunResult> RunGrid(const GridRunOptions& options) {
+  if (options.accumulate && options.poses.empty()) {
+    return Error{"accumulating revolutions needs poses (--poses, or --can with --dbc and --odometry)"};
+  }
+  if (Status valid = maps::ValidateStructureGridOptions(options.grid); !valid.ok()) return valid.error();
+  auto source = hal::net::OpenCapture(options.capture);
+  if (!source.ok()) return source.error();
+
+  GridRunResult result;
+  GridCollector collector(options, result);
+  std::optional<maps::InterpolatedPoses> poses;
+  if (!options.poses.empty()) poses.emplace(options.poses);
+  std::optional<maps::RevolutionGridder> gridder;
+  std::optional<Error> failure;
+  hal::velodyne::VelodyneStream* stream = nullptr;
+
+  // The laser table is known once the stream has identified the model, which it has by its
+  // first revolution; the gridder is created then.
+  auto on_revolution = [&](const Revolution& revolution) {
+    if (failure) return;
+    if (!gridder) {
+      const hal::velodyne::LaserTable table =
+          options.stream.calibration ? *options.stream.calibration
+                                     : hal::velodyne::DefaultLaserTable(stream->identification()->model);
+      auto created = maps::RevolutionGridder::Create(table, options.grid, poses ? &*poses : nullptr,
+                                                     options.stream.revolution.cut_azimuth_rad);
+      if (!created.ok()) {
+        failure = created.error();
+        return;
+      }
+      gridder.emplace(std::move(*created));
+    }
+    collector.Take(gridder->Add(revolution.fans));
+  };
+  hal::velodyne::VelodyneStream velodyne(options.stream, on_revolution);
+  stream = &velodyne;
+  while (auto datagram = (*source)->Next()) velodyne.Push(*datagram);
+  velodyne.Finish();
+  if (gridder) collector.Take(gridder->Flush());
+  collector.Finish();
+
+  result.stream = velodyne.stats();
+  result.identification = velodyne.identification();
+  if (failure) return *failure;
+  if (velodyne.model_error()) return *velodyne.model_error();
+  return result;
+}
+
+}  // namespace flat2d::localization
