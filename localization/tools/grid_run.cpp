@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "hal/net/datagram_source.hpp"
-#include "maps/grid/revolution_gridder.hpp"
 #include "maps/grid/structure_grid_config.hpp"
 
 namespace flat2d::localization {
@@ -32,6 +31,7 @@ class GridCollector {
     result_.fans_without_pose += static_cast<std::uint64_t>(published->fans_without_pose);
     if (!published->complete) return;
     const std::uint64_t index = result_.grids_complete++;
+    if (options_.on_grid) options_.on_grid(*published);
     if (accumulator_) {
       // A revolution outside the poses' time span has no frame to vote in.
       if (published->fans_without_pose > 0) return;

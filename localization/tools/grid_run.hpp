@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "maps/grid/class_grid.hpp"
 #include "maps/grid/grid_accumulator.hpp"
 #include "maps/grid/interpolated_poses.hpp"
+#include "maps/grid/revolution_gridder.hpp"
 #include "maps/grid/structure_grid_options.pb.h"
 
 namespace flat2d::localization {
@@ -34,6 +36,8 @@ struct GridRunOptions {
   bool accumulate = false;  // every complete revolution into one grid (needs poses)
   int revolution = 0;       // otherwise: which complete revolution to keep
   maps::AccumulationOptions accumulation;
+  // Called with every complete revolution's grid (the evaluation tools look at each).
+  std::function<void(const maps::PublishedGrid&)> on_grid;
 };
 
 struct GridRunResult {
