@@ -22,6 +22,28 @@ CellClass ClassOfSlope(double slope, const SlopeThresholds& thresholds) {
   return CellClass::kFree;
 }
 
+// Step (5): pairs (i, j > i + 1) of returns whose returns in between all lie farther away
+// than both. Scanning j upwards, once a return between is no farther than return i, no
+// later pair with i qualifies.
+void MarkSeeThroughPairs(std::span<const Eigen::Vector3f> returns, const SlopeThresholds& thresholds,
+                         std::span<CellClass> classes) {
+  const double steep = std::tan(thresholds.slammable_slope_rad);
+  for (std::size_t i = 0; i + 2 < returns.size(); ++i) {
+    const Eigen::Vector2d a = ProfilePoint(returns[i]);
+    if (a.y() > thresholds.see_through_max_height_m) continue;
+    double nearest_between = ProfilePoint(returns[i + 1]).x();
+    for (std::size_t j = i + 2; j < returns.size() && nearest_between > a.x(); ++j) {
+      const Eigen::Vector2d b = ProfilePoint(returns[j]);
+      if (b.y() <= thresholds.see_through_max_height_m && nearest_between > b.x() &&
+          std::abs(b.y() - a.y()) > steep * std::abs(b.x() - a.x())) {
+        const std::size_t nearer = a.x() <= b.x() ? i : j;
+        classes[nearer] = Strongest(classes[nearer], CellClass::kSlammable);
+      }
+      nearest_between = std::min(nearest_between, b.x());
+    }
+  }
+}
+
 }  // namespace
 
 double ProfileSlope(std::span<const Eigen::Vector2d> profile) {
@@ -64,6 +86,7 @@ void ClassifyFan(std::span<const Eigen::Vector3f> returns, const SlopeThresholds
       classes[nearest - 1] = Strongest(classes[nearest - 1], window_class);
     }
   }
+  if (thresholds.see_through_max_height_m > 0.0) MarkSeeThroughPairs(returns, thresholds, classes);
 }
 
 }  // namespace flat2d::maps

@@ -10,6 +10,12 @@
 // an obstacle window, conservatively, on its return nearest the vehicle, and a free window on
 // all its returns, keeping the strongest class a return gets from any window. The dummy
 // return is never marked: it is where the vehicle stands.
+//
+// Beyond the thesis, see-through structure (fences, railings, a bar over the ground): the
+// beams between two returns of such a structure pass through it and hit the ground behind,
+// so no consecutive pair is steep. (5) Any two returns below `see_through_max_height_m`
+// whose profile between them is farther away than both (nothing was hit in front of the
+// gap) are a pair too; steeper than slammable_slope, their nearer return is slammable.
 #pragma once
 
 #include <numbers>
@@ -25,6 +31,9 @@ struct SlopeThresholds {
   double hazard_slope_rad = 15.0 * std::numbers::pi / 180.0;
   double slammable_slope_rad = 80.0 * std::numbers::pi / 180.0;
   int fit_points = 2;  // returns per slope estimate, >= 2 (the dummy return counts)
+  // Step (5) for returns at most this high above the ground; 0 disables it. Bounded so that
+  // a canopy above the ground it overhangs (tree crowns start at 2-3 m) is no wall.
+  double see_through_max_height_m = 0.0;
 };
 
 // Classes `classes[i]` for `returns[i]`, the valid returns of one fan ordered bottom-up in the

@@ -51,6 +51,8 @@ void CheckSlope(const SlopeOptions& slope, Checker& check) {
                 "must exceed slope.hazard_slope_deg");
   check.AtLeast("slope.fit_points", slope.fit_points(), 2);
   check.Require(slope.fit_points() <= 8, "slope.fit_points", "must be at most 8");
+  check.Require(slope.see_through_max_height_m() >= 0.0 && std::isfinite(slope.see_through_max_height_m()),
+                "slope.see_through_max_height_m", "must be >= 0 (0 disables)");
 }
 
 void CheckPopcount(const PopcountOptions& popcount, bool polar, Checker& check) {

@@ -83,6 +83,42 @@ TEST(ClassifyFan, WallIsSlammableAtItsFace) {
   }
 }
 
+// A fence 8 m out: bars 5 cm thick at 0.45 m and 1.2 m, the ground seen between and behind.
+TEST(ClassifyFan, SeeThroughFenceIsSlammableOnlyWithTheSeeThroughRule) {
+  auto fence = [](double x) { return 0.0 * x; };
+  std::vector<Eigen::Vector3f> returns = FanOver(fence, 32);
+  // Replace the returns whose rays cross x = 8 at a bar's height by returns on that bar.
+  std::size_t on_bars = 0;
+  for (Eigen::Vector3f& r : returns) {
+    const double elevation = std::atan2(static_cast<double>(r.z()) - kSensorHeight, static_cast<double>(r.x()));
+    const double z_at_fence = kSensorHeight + 8.0 * std::tan(elevation);
+    for (const double bar : {0.45, 1.2}) {
+      if (r.x() > 8.0f && std::abs(z_at_fence - bar) < 0.025) {
+        r = Eigen::Vector3f(8.0f, 0.0f, static_cast<float>(z_at_fence));
+        ++on_bars;
+      }
+    }
+  }
+  ASSERT_GE(on_bars, 2u) << "the fan must hit both bars";
+  auto slammable = [&](const SlopeThresholds& thresholds) {
+    std::size_t n = 0;
+    for (const CellClass c : Classify(returns, thresholds)) n += c == CellClass::kSlammable;
+    return n;
+  };
+  EXPECT_EQ(slammable({}), 0u) << "consecutive pairs never see the fence as vertical";
+  EXPECT_GE(slammable({.see_through_max_height_m = 2.0}), 1u);
+  EXPECT_EQ(slammable({.see_through_max_height_m = 0.3}), 0u) << "both bars are above the limit";
+}
+
+// Ground below a canopy at 2.5 m: ground and canopy returns at one range are no wall when
+// the canopy is above the see-through height.
+TEST(ClassifyFan, CanopyAboveTheSeeThroughHeightIsNoWall) {
+  std::vector<Eigen::Vector3f> returns = {{5.0f, 0.0f, 0.0f}, {7.0f, 0.0f, 0.0f}, {9.0f, 0.0f, 0.0f},
+                                          {6.0f, 0.0f, 2.5f}, {6.05f, 0.0f, 2.8f}};
+  const auto classes = Classify(returns, {.see_through_max_height_m = 2.0});
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NE(classes[i], CellClass::kSlammable) << i;
+}
+
 TEST(ClassifyFan, RampsAreHazardAboveFifteenDegrees) {
   for (const double slope_deg : {10.0, 16.0}) {
     const double t = std::tan(slope_deg * kDeg);
