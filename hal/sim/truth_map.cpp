@@ -87,8 +87,10 @@ class Rasterizer {
     if (top_above_ground <= 0.0 || bottom_above_ground > options_.max_structure_bottom_m) {
       return TruthClass::kFree;  // buried, or above the structure band
     }
-    return top_above_ground >= options_.min_structure_height_m ? TruthClass::kOccupied
-                                                               : TruthClass::kHazard;
+    // Vertical extent, not the top: a LiDAR needs returns stacked up a face to call it
+    // structure, and a fence's 5 cm bars at 0.45 and 1.2 m give one return a fan each.
+    const double extent = top_above_ground - std::max(bottom_above_ground, 0.0);
+    return extent >= options_.min_structure_height_m ? TruthClass::kOccupied : TruthClass::kHazard;
   }
 
   const Scene& scene_;

@@ -2,11 +2,13 @@
 // item 5), in the classes of the slope-based multi-class detector (thesis 7.1.3, 7.3.1).
 //
 // occupied: static structure a LiDAR would call slammable: the footprint of every box,
-//   wall, building, cylinder, bar and foliage volume that reaches at least
-//   `min_structure_height_m` above the local ground and whose bottom is within the
-//   structure band (no higher than `max_structure_bottom_m` above the local ground).
-// hazard: obstacles to navigation that are not slammable: solids lower than that (curbs,
-//   low boxes; thesis Fig. 7.6, the 0.1 m box) and ground steeper than `hazard_slope_deg`
+//   wall, building, cylinder, bar and foliage volume that stands at least
+//   `min_structure_height_m` tall above the local ground (its vertical extent there) and
+//   whose bottom is within the structure band (no higher than `max_structure_bottom_m`
+//   above the local ground).
+// hazard: obstacles to navigation that are not slammable: solids less tall than that (curbs,
+//   low boxes, thesis Fig. 7.6's 0.1 m box; a fence's thin bars, which hold one return per
+//   fan at most) and ground steeper than `hazard_slope_deg`
 //   (15 deg as in thesis 7.1.3; a 16 deg ramp is hazard, 10 and 14.5 deg ramps are free),
 //   which includes the steps at a ramp's sides and drop-off.
 // free: everything else. Moving objects are not part of the truth.

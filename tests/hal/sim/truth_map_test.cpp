@@ -87,8 +87,9 @@ TEST(TruthMapTest, OccupiedFootprintsExactToOneCell) {
                   box({0, 19.9}, {20, 20.1}));
   ExpectFootprint(map, {Eigen::Vector2d(29, 9), Eigen::Vector2d(31, 11)}, TruthClass::kOccupied,
                   [](const Eigen::Vector2d& p) { return (p - Eigen::Vector2d(30, 10)).norm() - 0.5; });
-  // A 3 cm rail still marks the cells it runs through.
-  EXPECT_EQ(map.ClassAt(30.0, 20.0), TruthClass::kOccupied);
+  // A 3 cm rail at 1 m marks the cells it runs through, as a hazard: it stands 3 cm tall,
+  // so a LiDAR's fan holds one return of it at most, never a face.
+  EXPECT_EQ(map.ClassAt(30.0, 20.0), TruthClass::kHazard);
   EXPECT_EQ(map.ClassAt(30.0, 20.1), TruthClass::kFree);
   // A hedge from the ground is structure; a crown from 2.5 m and a rail at 3 m are overhead.
   EXPECT_EQ(map.ClassAt(45.0, 30.0), TruthClass::kOccupied);
