@@ -13,8 +13,9 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 PolarVoxelGrid::PolarVoxelGrid(const PolarGridLayout& layout, float band_height_m)
     : layout_(layout),
       band_height_m_(band_height_m),
-      columns_(static_cast<std::size_t>(layout.azimuth_bins) *
-               static_cast<std::size_t>(layout.range_bins)) {}
+      columns_(static_cast<std::size_t>(layout.azimuth_bins) * static_cast<std::size_t>(layout.range_bins)) {
+  touched_.reserve(columns_.size());
+}
 
 bool PolarVoxelGrid::Add(const Eigen::Vector3f& point) {
   const double x = point.x();
@@ -30,11 +31,17 @@ bool PolarVoxelGrid::Add(double azimuth_rad, double range_m, float z) {
   turns -= std::floor(turns);  // [0, 1)
   const int azimuth_bin =
       std::min(static_cast<int>(turns * layout_.azimuth_bins), layout_.azimuth_bins - 1);
-  AddHeight(columns_[Offset({azimuth_bin, static_cast<int>(range_bin)})], z, band_height_m_);
+  const PolarBin bin{azimuth_bin, static_cast<int>(range_bin)};
+  VoxelColumn& column = columns_[Offset(bin)];
+  if (column.empty()) touched_.push_back(bin);
+  AddHeight(column, z, band_height_m_);
   return true;
 }
 
-void PolarVoxelGrid::Clear() { std::fill(columns_.begin(), columns_.end(), VoxelColumn{}); }
+void PolarVoxelGrid::Clear() {
+  for (const PolarBin& bin : touched_) columns_[Offset(bin)] = VoxelColumn{};
+  touched_.clear();
+}
 
 Eigen::Vector2d PolarVoxelGrid::BinCenter(const PolarBin& bin) const {
   const double azimuth = (bin.azimuth + 0.5) * kTwoPi / layout_.azimuth_bins;

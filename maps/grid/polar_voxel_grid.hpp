@@ -52,6 +52,8 @@ class PolarVoxelGrid {
 
   const PolarGridLayout& layout() const { return layout_; }
   std::span<const VoxelColumn> columns() const { return columns_; }
+  // Bins that hold returns, each once (as VoxelPopcountGrid::touched).
+  std::span<const PolarBin> touched() const { return touched_; }
 
  private:
   std::size_t Offset(const PolarBin& bin) const {
@@ -62,6 +64,7 @@ class PolarVoxelGrid {
   PolarGridLayout layout_;
   float band_height_m_;
   std::vector<VoxelColumn> columns_;  // azimuth-major: one azimuth's ranges are contiguous
+  std::vector<PolarBin> touched_;     // capacity: every bin at most once
 };
 
 }  // namespace flat2d::maps

@@ -1,12 +1,16 @@
 #include "maps/grid/slope_classifier.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <array>
 #include <cmath>
 
 namespace flat2d::maps {
 
 namespace {
+
+// The most returns one fan holds (a 64-laser sensor).
+constexpr std::size_t kMaxFanReturns = 64;
 
 // The longest fit window: a few returns; more would smooth away the obstacles themselves.
 constexpr int kMaxFitPoints = 8;
@@ -25,15 +29,15 @@ CellClass ClassOfSlope(double slope, const SlopeThresholds& thresholds) {
 // Step (5): pairs (i, j > i + 1) of returns whose returns in between all lie farther away
 // than both. Scanning j upwards, once a return between is no farther than return i, no
 // later pair with i qualifies.
-void MarkSeeThroughPairs(std::span<const Eigen::Vector3f> returns, const SlopeThresholds& thresholds,
+void MarkSeeThroughPairs(std::span<const Eigen::Vector2d> points, const SlopeThresholds& thresholds,
                          std::span<CellClass> classes) {
   const double steep = std::tan(thresholds.slammable_slope_rad);
-  for (std::size_t i = 0; i + 2 < returns.size(); ++i) {
-    const Eigen::Vector2d a = ProfilePoint(returns[i]);
+  for (std::size_t i = 0; i + 2 < points.size(); ++i) {
+    const Eigen::Vector2d& a = points[i];
     if (a.y() > thresholds.see_through_max_height_m) continue;
-    double nearest_between = ProfilePoint(returns[i + 1]).x();
-    for (std::size_t j = i + 2; j < returns.size() && nearest_between > a.x(); ++j) {
-      const Eigen::Vector2d b = ProfilePoint(returns[j]);
+    double nearest_between = points[i + 1].x();
+    for (std::size_t j = i + 2; j < points.size() && nearest_between > a.x(); ++j) {
+      const Eigen::Vector2d& b = points[j];
       if (b.y() <= thresholds.see_through_max_height_m && nearest_between > b.x() &&
           std::abs(b.y() - a.y()) > steep * std::abs(b.x() - a.x())) {
         const std::size_t nearer = a.x() <= b.x() ? i : j;
@@ -65,13 +69,16 @@ double ProfileSlope(std::span<const Eigen::Vector2d> profile) {
 void ClassifyFan(std::span<const Eigen::Vector3f> returns, const SlopeThresholds& thresholds,
                  std::span<CellClass> classes) {
   std::fill(classes.begin(), classes.end(), CellClass::kUnknown);
+  assert(returns.size() <= kMaxFanReturns);
+  const std::size_t count = std::min(returns.size(), kMaxFanReturns);
   const std::size_t window = static_cast<std::size_t>(std::clamp(thresholds.fit_points, 2, kMaxFitPoints));
-  // Profile index 0 is the dummy return; index k > 0 is returns[k - 1].
-  auto profile_at = [&](std::size_t k) {
-    return k == 0 ? Eigen::Vector2d::Zero().eval() : ProfilePoint(returns[k - 1]);
-  };
+  // The profile once per fan: index 0 is the dummy return, index k > 0 is returns[k - 1].
+  std::array<Eigen::Vector2d, kMaxFanReturns + 1> points;
+  points[0] = Eigen::Vector2d::Zero();
+  for (std::size_t k = 0; k < count; ++k) points[k + 1] = ProfilePoint(returns[k]);
+  auto profile_at = [&](std::size_t k) { return points[k]; };
   std::array<Eigen::Vector2d, kMaxFitPoints> profile;
-  for (std::size_t first = 0; first + window <= returns.size() + 1; ++first) {
+  for (std::size_t first = 0; first + window <= count + 1; ++first) {
     std::size_t nearest = first;  // profile index of the window's return nearest the vehicle
     for (std::size_t k = 0; k < window; ++k) {
       profile[k] = profile_at(first + k);
@@ -86,7 +93,9 @@ void ClassifyFan(std::span<const Eigen::Vector3f> returns, const SlopeThresholds
       classes[nearest - 1] = Strongest(classes[nearest - 1], window_class);
     }
   }
-  if (thresholds.see_through_max_height_m > 0.0) MarkSeeThroughPairs(returns, thresholds, classes);
+  if (thresholds.see_through_max_height_m > 0.0) {
+    MarkSeeThroughPairs(std::span(points).subspan(1, count), thresholds, classes);
+  }
 }
 
 }  // namespace flat2d::maps

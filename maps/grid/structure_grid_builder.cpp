@@ -90,23 +90,19 @@ CellClass StructureGridBuilder::ClassOfColumn(const VoxelColumn& column) const {
   return CellClass::kFree;
 }
 
+// Only the columns that hold returns: the others would mark nothing.
 void StructureGridBuilder::ClassifyCartesianColumns() {
-  const GridGeometry& geometry = grid_.geometry();
-  for (int row = 0; row < geometry.height; ++row) {
-    for (int col = 0; col < geometry.width; ++col) {
-      grid_.Mark(CellIndex{col, row}, ClassOfColumn(cartesian_->column({col, row})));
-    }
+  const int width = grid_.geometry().width;
+  for (const std::uint32_t offset : cartesian_->touched()) {
+    const CellIndex cell{static_cast<int>(offset % static_cast<std::uint32_t>(width)),
+                         static_cast<int>(offset / static_cast<std::uint32_t>(width))};
+    grid_.Mark(cell, ClassOfColumn(cartesian_->columns()[offset]));
   }
 }
 
 void StructureGridBuilder::ClassifyPolarColumns() {
-  const PolarGridLayout& layout = polar_->layout();
-  for (int azimuth = 0; azimuth < layout.azimuth_bins; ++azimuth) {
-    for (int range = 0; range < layout.range_bins; ++range) {
-      const PolarBin bin{azimuth, range};
-      const CellClass cell_class = ClassOfColumn(polar_->column(bin));
-      if (cell_class != CellClass::kUnknown) grid_.Mark(polar_->BinCenter(bin), cell_class);
-    }
+  for (const PolarBin& bin : polar_->touched()) {
+    grid_.Mark(polar_->BinCenter(bin), ClassOfColumn(polar_->column(bin)));
   }
 }
 

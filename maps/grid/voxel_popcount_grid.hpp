@@ -28,6 +28,10 @@ class VoxelPopcountGrid {
 
   const VoxelColumn& column(const CellIndex& cell) const { return columns_[geometry_.Offset(cell)]; }
   std::span<const VoxelColumn> columns() const { return columns_; }
+  // Offsets of the columns that hold returns, each once, in the order first hit: a
+  // revolution touches a few percent of the grid, so classifying and clearing only these
+  // keeps the work after the last packet small.
+  std::span<const std::uint32_t> touched() const { return touched_; }
   // Popcount of the column's bands within `band_mask` (BandMask) reaches `threshold`.
   bool IsStructure(const CellIndex& cell, int threshold, std::uint64_t band_mask = ~0ULL) const {
     return std::popcount(column(cell).bands & band_mask) >= threshold;
@@ -40,6 +44,7 @@ class VoxelPopcountGrid {
   GridGeometry geometry_;
   float band_height_m_;
   std::vector<VoxelColumn> columns_;  // geometry_.cell_count(), row-major
+  std::vector<std::uint32_t> touched_;  // capacity cell_count(): every column at most once
 };
 
 }  // namespace flat2d::maps
