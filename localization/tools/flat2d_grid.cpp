@@ -222,7 +222,7 @@ std::string SummaryJson(const Options& options, const localization::GridRunResul
   const Eigen::Isometry2d& pose = result.frame_T_grid;
   const double yaw = std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
   std::ostringstream out;
-  out.precision(9);
+  out.precision(12);
   out << "{\"capture\":\"" << options.run.capture.string() << "\"";
   if (result.identification) {
     out << ",\"product\":\"" << hal::velodyne::ModelName(result.identification->model) << "\""
@@ -245,6 +245,7 @@ std::string SummaryJson(const Options& options, const localization::GridRunResul
       << ",\"slammable\":" << grid.Count(maps::CellClass::kSlammable) << "}";
   if (!options.run.accumulate) {
     out << ",\"revolution\":" << options.run.revolution
+        << ",\"complete\":" << (result.grid_complete ? "true" : "false")
         << ",\"start_time\":" << static_cast<double>(result.grid_start_ns) * 1e-9
         << ",\"end_time\":" << static_cast<double>(result.grid_end_ns) * 1e-9
         << ",\"reference_pose\":{\"x\":" << pose.translation().x() << ",\"y\":" << pose.translation().y()
@@ -272,6 +273,7 @@ int main(int argc, char** argv) {
   LoadInputs(options);
   auto result = localization::RunGrid(options.run);
   if (!result.ok()) Fail(2, result.error().message);
+  if (result->unsupported) Fail(3, *result->unsupported);
   if (!result->grid) {
     Fail(3, options.run.accumulate
                 ? "no complete revolution within the poses' time span"

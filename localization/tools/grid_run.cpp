@@ -28,8 +28,17 @@ class GridCollector {
 
   void Take(const maps::PublishedGrid* published) {
     if (published == nullptr) return;
-    result_.fans_without_pose += static_cast<std::uint64_t>(published->fans_without_pose);
-    if (!published->complete) return;
+    if (accumulator_) result_.fans_without_pose += static_cast<std::uint64_t>(published->fans_without_pose);
+    if (!published->complete) {
+      if (!accumulator_ && !partial_ && published->fans > 0) {
+        partial_ = *published->grid;
+        partial_fans_without_pose_ = static_cast<std::uint64_t>(published->fans_without_pose);
+        partial_frame_T_grid_ = published->local_T_grid;
+        partial_start_ns_ = published->start_ns;
+        partial_end_ns_ = published->end_ns;
+      }
+      return;
+    }
     const std::uint64_t index = result_.grids_complete++;
     if (options_.on_grid) options_.on_grid(*published);
     if (accumulator_) {
@@ -39,6 +48,7 @@ class GridCollector {
       ++result_.grids_accumulated;
     } else if (index == static_cast<std::uint64_t>(options_.revolution)) {
       result_.grid = *published->grid;
+      result_.fans_without_pose = static_cast<std::uint64_t>(published->fans_without_pose);
       result_.frame_T_grid = published->local_T_grid;
       result_.grid_start_ns = published->start_ns;
       result_.grid_end_ns = published->end_ns;
@@ -47,12 +57,25 @@ class GridCollector {
 
   void Finish() {
     if (accumulator_ && result_.grids_accumulated > 0) result_.grid = accumulator_->Result();
+    // Without a complete revolution, the first partial one stands in for revolution 0.
+    if (!accumulator_ && result_.grids_complete == 0 && options_.revolution == 0 && partial_) {
+      result_.grid = std::move(partial_);
+      result_.frame_T_grid = partial_frame_T_grid_;
+      result_.grid_start_ns = partial_start_ns_;
+      result_.grid_end_ns = partial_end_ns_;
+      result_.grid_complete = false;
+      result_.fans_without_pose = partial_fans_without_pose_;
+    }
   }
 
  private:
   const GridRunOptions& options_;
   GridRunResult& result_;
   std::optional<maps::GridAccumulator> accumulator_;
+  std::optional<maps::ClassGrid> partial_;
+  Eigen::Isometry2d partial_frame_T_grid_ = Eigen::Isometry2d::Identity();
+  TimeNs partial_start_ns_ = 0, partial_end_ns_ = 0;
+  std::uint64_t partial_fans_without_pose_ = 0;
 };
 
 }  // namespace
@@ -121,7 +144,7 @@ Result<GridRunResult> RunGrid(const GridRunOptions& options) {
   result.stream = velodyne.stats();
   result.identification = velodyne.identification();
   if (failure) return *failure;
-  if (velodyne.model_error()) return *velodyne.model_error();
+  if (velodyne.model_error()) result.unsupported = velodyne.model_error()->message;
   return result;
 }
 

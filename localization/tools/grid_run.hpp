@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -48,9 +49,16 @@ struct GridRunResult {
   Eigen::Isometry2d frame_T_grid = Eigen::Isometry2d::Identity();
   TimeNs grid_start_ns = 0;
   TimeNs grid_end_ns = 0;
+  // False when the capture holds no complete revolution and the kept grid is its first
+  // partial one (short captures, FOV-limited sensors).
+  bool grid_complete = true;
+  // Set when the capture's model cannot be decoded (e.g. VLS-128): no grid.
+  std::optional<std::string> unsupported;
   std::uint64_t grids_complete = 0;     // complete revolutions gridded
   std::uint64_t grids_accumulated = 0;  // ... of which had a pose and were accumulated
-  std::uint64_t fans_without_pose = 0;  // placed at their revolution's reference pose
+  // Fans placed at their revolution's reference pose for want of a pose at their time: of
+  // the kept revolution, or of every revolution when accumulating.
+  std::uint64_t fans_without_pose = 0;
   hal::velodyne::VelodyneStreamStats stream;
   std::optional<hal::velodyne::Identification> identification;
 };
