@@ -7,6 +7,7 @@
 // kept in memory; poses are the drive's truth at 200 Hz, as the odometry history would
 // give them. Each revolution is gridded in a 50 x 50 m grid at 5 cm (the shipped config).
 #include <benchmark/benchmark.h>
+#include <malloc.h>
 
 #include <algorithm>
 #include <chrono>
@@ -68,6 +69,12 @@ maps::StructureGridOptions ShippedOptions(maps::StructureGridOptions::Method met
   return grid;
 }
 
+// Heap bytes in use (glibc): small blocks plus mmapped large ones.
+double HeapBytes() {
+  const struct mallinfo2 info = mallinfo2();
+  return static_cast<double>(info.uordblks + info.hblkhd);
+}
+
 double Percentile(std::vector<double> values, double p) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
@@ -80,7 +87,10 @@ void BM_GridPerPacket(benchmark::State& state, maps::StructureGridOptions::Metho
   const maps::InterpolatedPoses poses(drive.poses);
   maps::StructureGridOptions options = ShippedOptions(method);
   if (free_space_range_m > 0.0) options.set_free_space_range_m(free_space_range_m);
+  const double heap_before = HeapBytes();
   auto gridder = maps::RevolutionGridder::Create(drive.table, options, &poses);
+  // Everything the gridder holds (both buffers), sized once at Create.
+  state.counters["gridder_MB"] = (HeapBytes() - heap_before) / 1e6;
   if (!gridder.ok()) {
     state.SkipWithError(gridder.error().message.c_str());
     return;
