@@ -15,6 +15,12 @@ PolarVoxelGrid::PolarVoxelGrid(const PolarGridLayout& layout, float band_height_
       band_height_m_(band_height_m),
       columns_(static_cast<std::size_t>(layout.azimuth_bins) * static_cast<std::size_t>(layout.range_bins)) {
   touched_.reserve(columns_.size());
+  // Bin-centre directions once: Finish places every touched bin, tens of thousands a turn.
+  directions_.reserve(static_cast<std::size_t>(layout.azimuth_bins));
+  for (int a = 0; a < layout.azimuth_bins; ++a) {
+    const double azimuth = (a + 0.5) * kTwoPi / layout.azimuth_bins;
+    directions_.emplace_back(std::cos(azimuth), std::sin(azimuth));
+  }
 }
 
 bool PolarVoxelGrid::Add(const Eigen::Vector3f& point) {
@@ -44,9 +50,8 @@ void PolarVoxelGrid::Clear() {
 }
 
 Eigen::Vector2d PolarVoxelGrid::BinCenter(const PolarBin& bin) const {
-  const double azimuth = (bin.azimuth + 0.5) * kTwoPi / layout_.azimuth_bins;
   const double range = (bin.range + 0.5) * layout_.range_resolution_m;
-  return range * Eigen::Vector2d(std::cos(azimuth), std::sin(azimuth));
+  return range * directions_[static_cast<std::size_t>(bin.azimuth)];
 }
 
 }  // namespace flat2d::maps

@@ -65,6 +65,7 @@ class PolarVoxelGrid {
   float band_height_m_;
   std::vector<VoxelColumn> columns_;  // azimuth-major: one azimuth's ranges are contiguous
   std::vector<PolarBin> touched_;     // capacity: every bin at most once
+  std::vector<Eigen::Vector2d> directions_;  // unit vector to each azimuth bin's centre
 };
 
 }  // namespace flat2d::maps
