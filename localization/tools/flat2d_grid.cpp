@@ -16,6 +16,7 @@
 #include "localization/tools/grid_run.hpp"
 #include "localization/tools/odometry_poses.hpp"
 #include "maps/grid/class_grid_file.hpp"
+#include "maps/grid/grid_crop.hpp"
 #include "maps/grid/structure_grid_config.hpp"
 #include "maps/render/class_grid_image.hpp"
 #include "maps/render/png_writer.hpp"
@@ -36,6 +37,7 @@ output (at least one):
   --png FILE            the grid in the thesis' colours (black slammable, red hazard,
                         white free, grey unknown)
   --json                a summary as one JSON object on stdout
+  --no-crop             keep the whole grid (default: cropped to the observed cells)
 
 poses (motion compensation, and the frame of an accumulated grid):
   --poses FILE.tum      vehicle poses (truth or estimate, TUM "t x y z qx qy qz qw");
@@ -74,6 +76,7 @@ struct Options {
   std::optional<std::string> out, png, poses, can, dbc, odometry, calibration;
   bool json = false;
   bool accumulate = false;
+  bool crop = true;
   maps::StructureGridOptions overrides;  // applied over the configuration
   std::vector<std::string> set_fields;   // which overrides were given
 };
@@ -138,6 +141,7 @@ Options ParseOptions(int argc, char** argv) {
       std::cout << kUsage;
       std::exit(0);
     } else if (arg == "--json") options.json = true;
+    else if (arg == "--no-crop") options.crop = false;
     else if (arg == "--out") options.out = value();
     else if (arg == "--png") options.png = value();
     else if (arg == "--poses") options.poses = value();
@@ -280,6 +284,10 @@ int main(int argc, char** argv) {
                 : "the capture has " + std::to_string(result->grids_complete) +
                       " complete revolutions; --revolution " + std::to_string(options.run.revolution) +
                       " is not among them");
+  }
+  if (options.crop) {
+    // One cell of margin, so the observed region's edge stays inside the picture.
+    if (auto cropped = maps::CropToObserved(*result->grid, 1)) result->grid = std::move(*cropped);
   }
   WriteOutputs(options, *result->grid);
   if (options.json) std::cout << SummaryJson(options, *result) << "\n";
