@@ -8,6 +8,7 @@
 
 #include "hal/can/dbc.hpp"
 #include "localization/odometry/can_odometry.hpp"
+#include "localization/tools/odometry_poses.hpp"
 #include "localization/odometry/odometry_config.hpp"
 
 namespace flat2d::localization {
@@ -81,14 +82,10 @@ Result<CanLogSummary> DecodeCanLog(const std::filesystem::path& dbc_path, const 
 
 Result<CanLogSummary> DeadReckonCanLog(const std::filesystem::path& dbc_path, const std::filesystem::path& config_path,
                                        const std::filesystem::path& log_path, std::ostream& tum) {
-  Result<hal::can::Dbc> dbc = hal::can::LoadDbc(dbc_path);
-  if (!dbc.ok()) return dbc.error();
-  Result<OdometryConfig> config = LoadOdometryConfig(config_path);
-  if (!config.ok()) return config.error();
-  Result<CanOdometry> odometry = CanOdometry::Create(*dbc, *config);
-  if (!odometry.ok()) return odometry.error();
-  Result<hal::can::CandumpReader> reader = hal::can::CandumpReader::Open(log_path);
-  if (!reader.ok()) return reader.error();
+  Result<CanLogOdometry> opened = OpenCanLogOdometry(dbc_path, config_path, log_path);
+  if (!opened.ok()) return opened.error();
+  CanOdometry* odometry = &opened->odometry;
+  hal::can::CandumpReader* reader = &opened->reader;
 
   CanLogSummary summary;
   CanFrame frame;

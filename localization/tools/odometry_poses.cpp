@@ -1,16 +1,16 @@
 #include "localization/tools/odometry_poses.hpp"
 
-#include "hal/can/candump_log.hpp"
+#include <utility>
+
 #include "hal/can/dbc.hpp"
 #include "hal/trajectory/tum_file.hpp"
-#include "localization/odometry/can_odometry.hpp"
 #include "localization/odometry/odometry_config.hpp"
 
 namespace flat2d::localization {
 
-Result<std::vector<maps::StampedPose2d>> DeadReckonedPoses(const std::filesystem::path& dbc_path,
-                                                           const std::filesystem::path& config_path,
-                                                           const std::filesystem::path& log_path) {
+Result<CanLogOdometry> OpenCanLogOdometry(const std::filesystem::path& dbc_path,
+                                          const std::filesystem::path& config_path,
+                                          const std::filesystem::path& log_path) {
   Result<hal::can::Dbc> dbc = hal::can::LoadDbc(dbc_path);
   if (!dbc.ok()) return dbc.error();
   Result<OdometryConfig> config = LoadOdometryConfig(config_path);
@@ -19,11 +19,18 @@ Result<std::vector<maps::StampedPose2d>> DeadReckonedPoses(const std::filesystem
   if (!odometry.ok()) return odometry.error();
   Result<hal::can::CandumpReader> reader = hal::can::CandumpReader::Open(log_path);
   if (!reader.ok()) return reader.error();
+  return CanLogOdometry{std::move(*odometry), std::move(*reader)};
+}
 
+Result<std::vector<maps::StampedPose2d>> DeadReckonedPoses(const std::filesystem::path& dbc_path,
+                                                           const std::filesystem::path& config_path,
+                                                           const std::filesystem::path& log_path) {
+  Result<CanLogOdometry> opened = OpenCanLogOdometry(dbc_path, config_path, log_path);
+  if (!opened.ok()) return opened.error();
   std::vector<maps::StampedPose2d> poses;
   hal::can::CanFrame frame;
-  while (reader->Next(frame)) {
-    const auto update = odometry->Push(frame);
+  while (opened->reader.Next(frame)) {
+    const auto update = opened->odometry.Push(frame);
     if (!update || !update->new_sample()) continue;
     const OdometrySample& sample = update->sample;
     poses.push_back({sample.time_ns, sample.local_T_vehicle.translation(), sample.local_T_vehicle.theta()});

@@ -6,10 +6,21 @@
 #include <filesystem>
 #include <vector>
 
+#include "hal/can/candump_log.hpp"
 #include "hal/common/error.hpp"
+#include "localization/odometry/can_odometry.hpp"
 #include "maps/grid/interpolated_poses.hpp"
 
 namespace flat2d::localization {
+
+// A candump log ready to dead-reckon: its reader and the odometry of the DBC and the
+// odometry configuration (each file's errors name it).
+struct CanLogOdometry {
+  CanOdometry odometry;
+  hal::can::CandumpReader reader;
+};
+Result<CanLogOdometry> OpenCanLogOdometry(const std::filesystem::path& dbc, const std::filesystem::path& odometry_config,
+                                          const std::filesystem::path& log);
 
 Result<std::vector<maps::StampedPose2d>> DeadReckonedPoses(const std::filesystem::path& dbc,
                                                            const std::filesystem::path& odometry_config,
