@@ -51,7 +51,8 @@ CorrelativeMatcher::CorrelativeMatcher(const MatcherLimits& limits, const Matche
       pyramid_(limits.max_map_cells, limits.max_levels),
       scans_(limits.max_headings, limits.max_points),
       branch_and_bound_(BranchAndBound::RootCount(limits.max_headings, limits.max_window_cells,
-                                                  limits.max_levels)) {}
+                                                  limits.max_levels)),
+      coarse_scan_(limits.max_points) {}
 
 Status CorrelativeMatcher::SetMap(const MatchGrid& map) {
   has_map_ = false;
@@ -63,13 +64,29 @@ Status CorrelativeMatcher::SetMap(const MatchGrid& map) {
 
 MatchResult CorrelativeMatcher::Match(std::span<const Eigen::Vector2d> points,
                                       const Se2& prediction, const SearchWindow& window) {
-  return Search(points, prediction, window, /*exhaustive=*/false);
+  return Search(points, prediction, window, /*exhaustive=*/false, options_.step_range_cap);
+}
+
+MatchResult CorrelativeMatcher::Relocalize(std::span<const Eigen::Vector2d> points, const Se2& prediction,
+                                           const SearchWindow& window, const RelocalizationOptions& relocalization) {
+  coarse_scan_.Clear();
+  for (std::size_t i = 0; i < points.size() && i < coarse_scan_.capacity(); ++i) coarse_scan_.Add(points[i]);
+  coarse_scan_.VoxelDecimate(relocalization.decimation_m);
+  const MatchResult coarse = Search(coarse_scan_.points(), prediction, window, /*exhaustive=*/false,
+                                    std::min(relocalization.step_range_cap_m, options_.step_range_cap));
+  if (!coarse.ok()) return coarse;
+  MatchResult fine = Search(points, coarse.map_T_vehicle, {relocalization.refine_linear_m, relocalization.refine_angular_rad},
+                            /*exhaustive=*/false, options_.step_range_cap);
+  fine.evaluated_candidates += coarse.evaluated_candidates;
+  fine.headings += coarse.headings;
+  fine.second_peak_score = std::max(fine.second_peak_score, coarse.second_peak_score);
+  return fine;
 }
 
 MatchResult CorrelativeMatcher::MatchExhaustive(std::span<const Eigen::Vector2d> points,
                                                 const Se2& prediction,
                                                 const SearchWindow& window) {
-  return Search(points, prediction, window, /*exhaustive=*/true);
+  return Search(points, prediction, window, /*exhaustive=*/true, options_.step_range_cap);
 }
 
 MatchStatus CorrelativeMatcher::CheckInput(std::span<const Eigen::Vector2d> points,
@@ -94,9 +111,9 @@ MatchStatus CorrelativeMatcher::CheckInput(std::span<const Eigen::Vector2d> poin
 
 SearchProblem CorrelativeMatcher::Prepare(std::span<const Eigen::Vector2d> points,
                                           const Se2& prediction, const SearchWindow& window,
-                                          HeadingSet& headings) {
+                                          double step_range_cap, HeadingSet& headings) {
   const double resolution = table_.geometry().resolution;
-  const double step_range = std::min(MaxRange(points), options_.step_range_cap);
+  const double step_range = std::min(MaxRange(points), step_range_cap);
   headings = ChooseHeadings(resolution, step_range, window.angular, options_.angular_step,
                             limits_.max_headings);
   scans_.Prepare(points, prediction, headings, table_.geometry());
@@ -115,7 +132,7 @@ SearchProblem CorrelativeMatcher::Prepare(std::span<const Eigen::Vector2d> point
 
 MatchResult CorrelativeMatcher::Search(std::span<const Eigen::Vector2d> points,
                                        const Se2& prediction, const SearchWindow& window,
-                                       bool exhaustive) {
+                                       bool exhaustive, double step_range_cap) {
   MatchResult result;
   result.map_T_vehicle = prediction;
   result.points = points.size();
@@ -123,7 +140,7 @@ MatchResult CorrelativeMatcher::Search(std::span<const Eigen::Vector2d> points,
   if (result.status != MatchStatus::kOk) return result;
 
   HeadingSet headings;
-  const SearchProblem problem = Prepare(points, prediction, window, headings);
+  const SearchProblem problem = Prepare(points, prediction, window, step_range_cap, headings);
   const SearchOutcome outcome =
       exhaustive ? ExhaustiveSearch(problem) : branch_and_bound_.Search(problem);
   result.headings = headings.count;

@@ -23,6 +23,7 @@
 #include "localization/matching/branch_and_bound.hpp"
 #include "localization/matching/match_grid.hpp"
 #include "localization/matching/match_result.hpp"
+#include "localization/matching/scan_points.hpp"
 #include "localization/matching/rotated_scans.hpp"
 #include "localization/matching/score_pyramid.hpp"
 #include "localization/matching/score_surface.hpp"
@@ -57,6 +58,15 @@ struct MatcherOptions {
   double ambiguity_separation_rad = 0.1;
 };
 
+// Global relocalization in two stages (Relocalize): a complete but coarse search of the
+// whole window, then a tracking match at full detail around its best.
+struct RelocalizationOptions {
+  double decimation_m = 0.5;       // stage 1: one point per square this size
+  double step_range_cap_m = 3.0;   // stage 1: headings stepped for points this far away
+  double refine_linear_m = 0.5;    // stage 2: tracking window around stage 1's best
+  double refine_angular_rad = 0.05;
+};
+
 // Half-widths of the search window around the prediction.
 struct SearchWindow {
   double linear = 1.5;    // metres, in x and in y
@@ -74,6 +84,14 @@ class CorrelativeMatcher {
   // Matches `points` (vehicle frame) around map_T_vehicle `prediction`.
   MatchResult Match(std::span<const Eigen::Vector2d> points, const Se2& prediction,
                     const SearchWindow& window);
+  // Global relocalization (a window of tens of metres, all headings) in two stages: (1) the
+  // scan decimated to relocalization.decimation_m and headings stepped for
+  // step_range_cap_m, so that the exact branch and bound scores far fewer points and
+  // headings (stage 1 still searches every pose of the window, at coarser steps); (2) Match
+  // of the full scan in a small window around stage 1's best. The result is stage 2's,
+  // with the candidates and headings of both stages; a stage-1 failure is returned as is.
+  MatchResult Relocalize(std::span<const Eigen::Vector2d> points, const Se2& prediction,
+                         const SearchWindow& window, const RelocalizationOptions& relocalization = {});
   // The same with an exhaustive search (tests, small windows).
   MatchResult MatchExhaustive(std::span<const Eigen::Vector2d> points, const Se2& prediction,
                               const SearchWindow& window);
@@ -83,11 +101,11 @@ class CorrelativeMatcher {
 
  private:
   MatchResult Search(std::span<const Eigen::Vector2d> points, const Se2& prediction,
-                     const SearchWindow& window, bool exhaustive);
+                     const SearchWindow& window, bool exhaustive, double step_range_cap);
   MatchStatus CheckInput(std::span<const Eigen::Vector2d> points, const Se2& prediction,
                          const SearchWindow& window) const;
   SearchProblem Prepare(std::span<const Eigen::Vector2d> points, const Se2& prediction,
-                        const SearchWindow& window, HeadingSet& headings);
+                        const SearchWindow& window, double step_range_cap, HeadingSet& headings);
   void Judge(std::span<const Eigen::Vector2d> points, const SearchOutcome& outcome,
              MatchResult& result) const;
 
@@ -97,6 +115,7 @@ class CorrelativeMatcher {
   ScorePyramid pyramid_;
   RotatedScans scans_;
   BranchAndBound branch_and_bound_;
+  ScanPoints coarse_scan_;  // Relocalize's stage 1: limits.max_points
   bool has_map_ = false;
 };
 

@@ -76,7 +76,8 @@ double Percentile(std::vector<double> values, double q) {
 }
 
 void RunMatches(benchmark::State& state, const MatcherLimits& limits, const SearchWindow& window,
-                double offset_linear, double offset_angular, int count) {
+                double offset_linear, double offset_angular, int count, bool relocalize = false,
+                const RelocalizationOptions& relocalization = {}) {
   CorrelativeMatcher matcher(limits, MatcherOptions{});
   if (!matcher.SetMap(TheScene().map).ok()) {
     state.SkipWithError("map exceeds the limits");
@@ -98,7 +99,8 @@ void RunMatches(benchmark::State& state, const MatcherLimits& limits, const Sear
                            sample.truth.theta() + turn(random));
       const auto start = std::chrono::steady_clock::now();
       const double cpu_start = ThreadCpuMilliseconds();
-      const MatchResult result = matcher.Match(sample.points, prediction, window);
+      const MatchResult result = relocalize ? matcher.Relocalize(sample.points, prediction, window, relocalization)
+                                            : matcher.Match(sample.points, prediction, window);
       milliseconds.push_back(ThreadCpuMilliseconds() - cpu_start);
       const auto stop = std::chrono::steady_clock::now();
       benchmark::DoNotOptimize(result);
@@ -133,6 +135,17 @@ void BM_GlobalMatch(benchmark::State& state) {
   RunMatches(state, limits, SearchWindow{20.0, std::numbers::pi}, 15.0, std::numbers::pi, 10);
 }
 BENCHMARK(BM_GlobalMatch)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+// The daemon's relocalization: Relocalize's two stages over the same window.
+void BM_Relocalize(benchmark::State& state) {
+  const MatcherLimits limits{kMaxPoints, 2100 * 2100, 400, 8192, 11};
+  RelocalizationOptions relocalization;
+  relocalization.decimation_m = static_cast<double>(state.range(0)) / 100.0;
+  relocalization.step_range_cap_m = static_cast<double>(state.range(1));
+  RunMatches(state, limits, SearchWindow{20.0, std::numbers::pi}, 15.0, std::numbers::pi, 20, /*relocalize=*/true,
+             relocalization);
+}
+BENCHMARK(BM_Relocalize)->Args({50, 3})->Args({80, 3})->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace flat2d::localization

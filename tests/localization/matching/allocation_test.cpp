@@ -30,7 +30,9 @@ TEST(MatcherAllocationTest, SetMapAndMatchAllocateNothing) {
   const MatchResult exhaustive =
       matcher.MatchExhaustive(scan.points(), Se2(4.0, 4.0, 0.3), {0.1, 0.01});
   const MatchResult failed = matcher.Match({}, Se2(4.0, 4.0, 0.3), {1.5, 0.1});
+  const MatchResult relocalized = matcher.Relocalize(scan.points(), Se2(5.0, 5.0, 0.0), {2.0, 3.2});
   EXPECT_EQ(flat2d::testing::AllocationCount(), before);
+  EXPECT_TRUE(relocalized.ok());
   EXPECT_TRUE(tracking.ok());
   EXPECT_TRUE(global.ok());
   EXPECT_TRUE(exhaustive.ok());

@@ -42,7 +42,7 @@ Errors ErrorOf(const Se2& estimate, const Se2& truth) {
 // Matches `trials` random poses of `world`; every one must be within tolerance.
 void ExpectRecovered(const World& world, const LaserModel& laser, const SearchWindow& window,
                      double perturb_linear, double perturb_angular, int trials,
-                     std::uint32_t seed, const MatcherLimits& limits) {
+                     std::uint32_t seed, const MatcherLimits& limits, bool relocalize = false) {
   std::mt19937 random(seed);
   const MatchGrid map = testing::Rasterize(world, kResolution, 2.0);
   CorrelativeMatcher matcher(limits, MatcherOptions{});
@@ -53,7 +53,8 @@ void ExpectRecovered(const World& world, const LaserModel& laser, const SearchWi
     const Se2 truth = testing::RandomFreePose(world, 0.5, random);
     const std::vector<Eigen::Vector2d> scan = CastScan(world, truth, laser, &random);
     const Se2 prediction = Perturb(truth, perturb_linear, perturb_angular, random);
-    const MatchResult result = matcher.Match(scan, prediction, window);
+    const MatchResult result =
+        relocalize ? matcher.Relocalize(scan, prediction, window) : matcher.Match(scan, prediction, window);
     ASSERT_TRUE(result.ok()) << "seed " << seed << " trial " << trial << ": "
                              << MatchStatusName(result.status) << " score " << result.score;
     const Errors error = ErrorOf(result.map_T_vehicle, truth);
@@ -107,6 +108,36 @@ TEST(CorrelativeMatcherTest, RelocalizesGloballyWithAllHeadings) {
   SearchWindow window{4.0, std::numbers::pi};
   ExpectRecovered(testing::RoomsWorld(), laser, window, 3.0, std::numbers::pi, 5, 3,
                   MatcherLimits{800, 600 * 400, 80, 4096, 9});
+}
+
+// The two-stage relocalization finds the same poses: a coarse complete search, then a
+// tracking match at full detail.
+TEST(CorrelativeMatcherTest, RelocalizesInTwoStagesWithAllHeadings) {
+  LaserModel laser;
+  laser.beams = 720;
+  laser.max_range = 20.0;
+  SearchWindow window{4.0, std::numbers::pi};
+  ExpectRecovered(testing::RoomsWorld(), laser, window, 3.0, std::numbers::pi, 10, 3,
+                  MatcherLimits{800, 600 * 400, 80, 4096, 9}, /*relocalize=*/true);
+}
+
+TEST(CorrelativeMatcherTest, RelocalizationSearchesFewerCandidatesThanTheFineGlobalSearch) {
+  const World world = testing::RoomsWorld();
+  CorrelativeMatcher matcher(MatcherLimits{800, 600 * 400, 80, 4096, 9}, MatcherOptions{});
+  ASSERT_TRUE(matcher.SetMap(testing::Rasterize(world, kResolution, 2.0)).ok());
+  LaserModel laser;
+  laser.beams = 720;
+  laser.max_range = 20.0;
+  const Se2 truth(4.0, 4.0, 0.3);
+  const std::vector<Eigen::Vector2d> scan = CastScan(world, truth, laser);
+  const Se2 prediction(6.0, 2.5, 0.3 + 2.0);
+  const MatchResult fine = matcher.Match(scan, prediction, {4.0, std::numbers::pi});
+  const MatchResult two_stage = matcher.Relocalize(scan, prediction, {4.0, std::numbers::pi});
+  ASSERT_TRUE(fine.ok());
+  ASSERT_TRUE(two_stage.ok());
+  EXPECT_LE(ErrorOf(two_stage.map_T_vehicle, fine.map_T_vehicle).translation, kResolution);
+  EXPECT_LT(two_stage.evaluated_candidates, fine.evaluated_candidates / 2);
+  EXPECT_EQ(two_stage.points, scan.size());  // stage 2 matched the whole scan
 }
 
 TEST(CorrelativeMatcherTest, ReportsTheSearchItDid) {
