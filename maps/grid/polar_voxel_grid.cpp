@@ -24,8 +24,8 @@ PolarVoxelGrid::PolarVoxelGrid(const PolarGridLayout& layout, float band_height_
 }
 
 bool PolarVoxelGrid::Add(const Eigen::Vector3f& point) {
-  const double x = point.x();
-  const double y = point.y();
+  const double x = static_cast<double>(point.x());
+  const double y = static_cast<double>(point.y());
   return Add(std::atan2(y, x), std::hypot(x, y), point.z());
 }
 
