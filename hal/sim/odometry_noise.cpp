@@ -10,8 +10,8 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kPerHour = 1.0 / 3600.0;          // deg/h -> deg/s
 constexpr double kPerSqrtHour = 1.0 / 60.0;        // deg/sqrt(h) -> deg/sqrt(s)
 
-// The car of both gyro presets: tyres 0.5 % larger than nominal (new, well inflated), each
-// within +-0.1 %; wheel-speed sensors of about 0.04 km/h noise; the steering-angle sensor
+// The car of both gyro presets: wheel speeds read 0.5 % fast (tyres 0.5 % smaller than the
+// radius the ECU assumes, e.g. worn), each wheel within +-0.1 %; wheel-speed sensors of about 0.04 km/h noise; the steering-angle sensor
 // 0.5 deg off centre with 0.1 deg noise.
 OdometryNoise CarWithoutGyroErrors() {
   OdometryNoise noise;

@@ -134,8 +134,8 @@ void AddDrives(SceneDescription& scene) {
 
   Drive* loop = AddDrive(
       scene, "localize-loop",
-      "A figure of eight through the corridor crossing, lap after lap (220 m a lap, about "
-      "3 minutes): for open-loop drift over 10 minutes and more.",
+      "A figure of eight through the corridor crossing, lap after lap (207 m a lap, about "
+      "2 min 40 s): for open-loop drift over 10 minutes and more.",
       {{kWestX, 50}, {kWestX, kMidY}, {kEastX, kMidY}, {kEastX, kSouthY}, {kMidX, kSouthY},
        {kMidX, kNorthY}, {kWestX, kNorthY}},
       1.3, kCornerRadius);

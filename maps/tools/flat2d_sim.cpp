@@ -47,7 +47,7 @@ constexpr const char* kUsage = R"(usage:
   --odometry-noise P    mems | fog | none (default mems)
   --gnss                put noisy GNSS fixes ($GPRMC) into the position packets
   --truth-rate HZ       truth.tum rate, >= 100 (default 200)
-  --map-resolution M    truth map cell size in metres (default 0.05; campus: 8300^2 cells)
+  --map-resolution M    truth map cell size in metres (default 0.05; campus: 10080 x 6880 cells)
   --start UNIX_SECONDS  time of the drive's start (default 1767225600: 2026-01-01T00:00:00Z)
   --list                the built-in worlds and their drives with durations and lengths
   --json                one JSON object on stdout (the run's summary, or the list)
