@@ -30,12 +30,9 @@ class GridCollector {
     if (published == nullptr) return;
     if (accumulator_) result_.fans_without_pose += static_cast<std::uint64_t>(published->fans_without_pose);
     if (!published->complete) {
-      if (!accumulator_ && !partial_ && published->fans > 0) {
-        partial_ = *published->grid;
-        partial_fans_without_pose_ = static_cast<std::uint64_t>(published->fans_without_pose);
-        partial_frame_T_grid_ = published->local_T_grid;
-        partial_start_ns_ = published->start_ns;
-        partial_end_ns_ = published->end_ns;
+      if (!accumulator_ && !partial_grid_ && published->fans > 0) {
+        partial_ = *published;
+        partial_grid_ = *published->grid;  // the published grid is reused by the next turn
       }
       return;
     }
@@ -47,35 +44,33 @@ class GridCollector {
       accumulator_->Add(*published->grid, published->local_T_grid);
       ++result_.grids_accumulated;
     } else if (index == static_cast<std::uint64_t>(options_.revolution)) {
-      result_.grid = *published->grid;
-      result_.fans_without_pose = static_cast<std::uint64_t>(published->fans_without_pose);
-      result_.frame_T_grid = published->local_T_grid;
-      result_.grid_start_ns = published->start_ns;
-      result_.grid_end_ns = published->end_ns;
+      Keep(*published, *published->grid);
     }
   }
 
   void Finish() {
     if (accumulator_ && result_.grids_accumulated > 0) result_.grid = accumulator_->Result();
     // Without a complete revolution, the first partial one stands in for revolution 0.
-    if (!accumulator_ && result_.grids_complete == 0 && options_.revolution == 0 && partial_) {
-      result_.grid = std::move(partial_);
-      result_.frame_T_grid = partial_frame_T_grid_;
-      result_.grid_start_ns = partial_start_ns_;
-      result_.grid_end_ns = partial_end_ns_;
-      result_.grid_complete = false;
-      result_.fans_without_pose = partial_fans_without_pose_;
+    if (!accumulator_ && result_.grids_complete == 0 && options_.revolution == 0 && partial_grid_) {
+      Keep(partial_, std::move(*partial_grid_));
     }
   }
 
  private:
+  void Keep(const maps::PublishedGrid& published, maps::ClassGrid grid) {
+    result_.grid = std::move(grid);
+    result_.grid_complete = published.complete;
+    result_.fans_without_pose = static_cast<std::uint64_t>(published.fans_without_pose);
+    result_.frame_T_grid = published.local_T_grid;
+    result_.grid_start_ns = published.start_ns;
+    result_.grid_end_ns = published.end_ns;
+  }
+
   const GridRunOptions& options_;
   GridRunResult& result_;
   std::optional<maps::GridAccumulator> accumulator_;
-  std::optional<maps::ClassGrid> partial_;
-  Eigen::Isometry2d partial_frame_T_grid_ = Eigen::Isometry2d::Identity();
-  TimeNs partial_start_ns_ = 0, partial_end_ns_ = 0;
-  std::uint64_t partial_fans_without_pose_ = 0;
+  maps::PublishedGrid partial_;                // the first partial revolution's metadata...
+  std::optional<maps::ClassGrid> partial_grid_;  // ...and its grid
 };
 
 }  // namespace
