@@ -10,13 +10,17 @@
 //   bytes 20..   the PriorMapHeader, H bytes
 //   then         the tile section: each tile's zstd frame, tile_cells^2 cell bytes row-major
 //                (row 0 = lowest y), at the offset its TileEntry gives, with its CRC-32.
-// Tiles whose cells are all unknown are not stored. The writer refuses grids whose cells do
-// not line up with the tile grid's resolution.
+//                then each viewpoint's zstd frame (its Viewpoint entry gives offset and CRC-32).
+// Tiles whose cells are all unknown are not stored. A map can be written from a ClassGrid or
+// from a TileSource that produces one tile at a time, so maps larger than memory can be
+// written (a city, the 1 km^2 reader test).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "hal/common/error.hpp"
 #include "maps/grid/class_grid.hpp"
@@ -29,6 +33,7 @@ inline constexpr std::uint32_t kPriorMapFormatVersion = 1;
 inline constexpr std::size_t kPriorMapPreambleBytes = 20;
 inline constexpr int kMaxTileCells = 1024;             // 1 MB a tile at most
 inline constexpr std::uint32_t kMaxHeaderBytes = 64u << 20;  // a 64 MB index: millions of tiles
+inline constexpr int kMaxViewpointSideCells = 4096;         // 204.8 m at 5 cm
 
 struct PriorMapWriteOptions {
   int tile_cells = 256;     // 12.8 m at 5 cm
@@ -39,7 +44,30 @@ struct PriorMapWriteOptions {
   std::string source;
 };
 
+// Where a map's cells come from when writing: its extent, and one tile at a time.
+class TileSource {
+ public:
+  virtual ~TileSource() = default;
+  virtual const GridGeometry& geometry() const = 0;
+  // Fills `cells` (tile_cells^2, row-major) with tile (col, row), unknown beyond the map;
+  // false when every cell is unknown (the tile is not stored).
+  virtual bool FillTile(int tile_cells, int col, int row, std::span<std::uint8_t> cells) = 0;
+};
+
+// A viewpoint sub-map to store: the historic pose and the visible cells, a grid at the
+// map's resolution whose cells line up with the map's (viewpoint.hpp builds them).
+struct ViewpointGrid {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double yaw_rad = 0.0;
+  double time_s = 0.0;
+  ClassGrid cells;
+};
+
 // Writes `grid` (its origin and resolution become the map's) as a prior map file.
-Status WritePriorMap(const ClassGrid& grid, const std::filesystem::path& path, const PriorMapWriteOptions& options);
+Status WritePriorMap(const ClassGrid& grid, const std::filesystem::path& path, const PriorMapWriteOptions& options,
+                     std::span<const ViewpointGrid> viewpoints = {});
+Status WritePriorMap(TileSource& source, const std::filesystem::path& path, const PriorMapWriteOptions& options,
+                     std::span<const ViewpointGrid> viewpoints = {});
 
 }  // namespace flat2d::maps

@@ -120,6 +120,7 @@ Result<PriorMapReader> PriorMapReader::Finish(std::unique_ptr<ByteSource> source
   reader.tile_section_ = kPriorMapPreambleBytes + header_bytes;
   reader.source_ = std::move(source);
   if (Status index = reader.CheckIndex(); !index.ok()) return index.error();
+  if (Status viewpoints = reader.CheckViewpoints(); !viewpoints.ok()) return viewpoints.error();
 
   const auto tile_bytes = static_cast<std::size_t>(reader.header_.tile_cells()) * reader.header_.tile_cells();
   reader.slots_.resize(static_cast<std::size_t>(cache_tiles));
@@ -127,7 +128,14 @@ Result<PriorMapReader> PriorMapReader::Finish(std::unique_ptr<ByteSource> source
   reader.unknown_.assign(tile_bytes, static_cast<std::uint8_t>(CellClass::kUnknown));
   std::uint32_t largest = 0;
   for (const TileEntry& tile : reader.header_.tiles()) largest = std::max(largest, tile.compressed_bytes());
+  std::size_t largest_viewpoint = 0;
+  for (const Viewpoint& viewpoint : reader.header_.viewpoints()) {
+    largest = std::max(largest, viewpoint.compressed_bytes());
+    largest_viewpoint =
+        std::max(largest_viewpoint, static_cast<std::size_t>(viewpoint.width()) * static_cast<std::size_t>(viewpoint.height()));
+  }
   reader.compressed_.resize(largest);
+  reader.viewpoint_cells_.resize(largest_viewpoint);
   reader.zstd_ = std::make_unique<ZstdContext>();
   if (reader.zstd_->context == nullptr) return MakeError(name + ": zstd: out of memory");
   return reader;
@@ -179,6 +187,78 @@ Status PriorMapReader::CheckIndex() {
   return Status::Ok();
 }
 
+Status PriorMapReader::CheckViewpoints() {
+  const std::uint64_t section = file_bytes_ - tile_section_;
+  for (int i = 0; i < header_.viewpoints_size(); ++i) {
+    const Viewpoint& v = header_.viewpoints(i);
+    const std::string name = name_ + ": viewpoint " + std::to_string(i);
+    if (v.width() <= 0 || v.height() <= 0 || v.width() > kMaxViewpointSideCells || v.height() > kMaxViewpointSideCells) {
+      return MakeError(name + ": width and height must be in [1, " + std::to_string(kMaxViewpointSideCells) + "]");
+    }
+    if (!std::isfinite(v.x_m()) || !std::isfinite(v.y_m()) || !std::isfinite(v.yaw_rad())) {
+      return MakeError(name + ": pose is not finite");
+    }
+    const std::size_t bound = ZSTD_compressBound(static_cast<std::size_t>(v.width()) * v.height());
+    if (v.compressed_bytes() == 0 || v.compressed_bytes() > bound || v.offset() > section ||
+        v.compressed_bytes() > section - v.offset()) {
+      return MakeError(name + " (offset " + std::to_string(v.offset()) + ", " + std::to_string(v.compressed_bytes()) +
+                       " bytes) runs past the end of the file: truncated?");
+    }
+  }
+  return Status::Ok();
+}
+
+Status PriorMapReader::Decompress(std::uint64_t offset, std::uint32_t bytes, std::uint32_t crc,
+                                  std::span<std::uint8_t> out, const std::string& what) {
+  auto damaged = [&](const std::string& why) {
+    ++stats_.damaged_tiles;
+    return MakeError(name_ + ": " + what + ": " + why);
+  };
+  const std::span<std::uint8_t> compressed(compressed_.data(), bytes);
+  if (!source_->Read(tile_section_ + offset, compressed)) return damaged("cannot be read");
+  if (Crc32(compressed) != crc) return damaged("CRC mismatch");
+  const std::size_t size = ZSTD_decompressDCtx(zstd_->context, out.data(), out.size(), compressed.data(),
+                                               compressed.size());
+  if (ZSTD_isError(size)) return damaged(std::string("zstd: ") + ZSTD_getErrorName(size));
+  if (size != out.size()) return damaged("holds " + std::to_string(size) + " cells, not " + std::to_string(out.size()));
+  const auto bad = std::find_if(out.begin(), out.end(),
+                                [](std::uint8_t c) { return c > static_cast<std::uint8_t>(CellClass::kSlammable); });
+  if (bad != out.end()) return damaged("cell value " + std::to_string(*bad) + " is no class");
+  return Status::Ok();
+}
+
+Result<std::span<const std::uint8_t>> PriorMapReader::ViewpointCells(int index) {
+  if (index < 0 || index >= header_.viewpoints_size()) {
+    return MakeError(name_ + ": no viewpoint " + std::to_string(index));
+  }
+  const Viewpoint& v = header_.viewpoints(index);
+  const std::span<std::uint8_t> out(viewpoint_cells_.data(), static_cast<std::size_t>(v.width()) * v.height());
+  if (Status read = Decompress(v.offset(), v.compressed_bytes(), v.crc32(), out, "viewpoint " + std::to_string(index));
+      !read.ok()) {
+    return read.error();
+  }
+  return std::span<const std::uint8_t>(out);
+}
+
+Result<ClassGrid> PriorMapReader::ViewpointGrid(int index) {
+  auto cells = ViewpointCells(index);
+  if (!cells.ok()) return cells.error();
+  const Viewpoint& v = header_.viewpoints(index);
+  GridGeometry g;
+  g.width = v.width();
+  g.height = v.height();
+  g.resolution_m = header_.resolution_m();
+  g.origin = Eigen::Vector2d(header_.origin_x_m(), header_.origin_y_m()) +
+             g.resolution_m * Eigen::Vector2d(v.col(), v.row());
+  ClassGrid grid(g);
+  for (int row = 0; row < g.height; ++row) {
+    for (int col = 0; col < g.width; ++col) {
+      grid.Mark(CellIndex{col, row}, static_cast<CellClass>((*cells)[static_cast<std::size_t>(row) * g.width + col]));
+    }
+  }
+  return grid;
+}
+
 GridGeometry PriorMapReader::geometry() const {
   GridGeometry g;
   g.width = header_.width_tiles() * header_.tile_cells();
@@ -192,20 +272,10 @@ Status PriorMapReader::LoadInto(int entry, Slot& slot) {
   const TileEntry& tile = header_.tiles(entry);
   ++stats_.tile_reads;
   slot.entry = -1;
-  const std::span<std::uint8_t> compressed(compressed_.data(), tile.compressed_bytes());
-  auto damaged = [&](const std::string& what) {
-    ++stats_.damaged_tiles;
-    return MakeError(name_ + ": " + TileName(tile) + ": " + what);
-  };
-  if (!source_->Read(tile_section_ + tile.offset(), compressed)) return damaged("cannot be read");
-  if (Crc32(compressed) != tile.crc32()) return damaged("CRC mismatch");
-  const std::size_t size = ZSTD_decompressDCtx(zstd_->context, slot.cells.data(), slot.cells.size(),
-                                               compressed.data(), compressed.size());
-  if (ZSTD_isError(size)) return damaged(std::string("zstd: ") + ZSTD_getErrorName(size));
-  if (size != slot.cells.size()) return damaged("holds " + std::to_string(size) + " cells, not tile_cells^2");
-  const auto bad = std::find_if(slot.cells.begin(), slot.cells.end(),
-                                [](std::uint8_t c) { return c > static_cast<std::uint8_t>(CellClass::kSlammable); });
-  if (bad != slot.cells.end()) return damaged("cell value " + std::to_string(*bad) + " is no class");
+  if (Status read = Decompress(tile.offset(), tile.compressed_bytes(), tile.crc32(), slot.cells, TileName(tile));
+      !read.ok()) {
+    return read;
+  }
   slot.entry = entry;
   return Status::Ok();
 }

@@ -61,6 +61,14 @@ class PriorMapReader {
   // The class at a map-frame point: unknown outside the map or on a damaged tile.
   CellClass ClassAt(const Eigen::Vector2d& point);
 
+  // Viewpoint sub-maps (prior_map.proto's Viewpoint): header().viewpoints(i) says where
+  // viewpoint i is; ViewpointCells reads and checks its cells (width x height, row-major)
+  // into one buffer sized at Open for the largest. Valid until the next call.
+  int viewpoint_count() const { return header_.viewpoints_size(); }
+  Result<std::span<const std::uint8_t>> ViewpointCells(int index);
+  // Viewpoint i's cells as a grid in the map frame (allocates: tools and tests).
+  Result<ClassGrid> ViewpointGrid(int index);
+
   const PriorMapReaderStats& stats() const { return stats_; }
   int cache_tiles() const { return static_cast<int>(slots_.size()); }
 
@@ -73,6 +81,10 @@ class PriorMapReader {
   PriorMapReader() = default;
   static Result<PriorMapReader> Finish(std::unique_ptr<ByteSource> source, int cache_tiles, const std::string& name);
   Status CheckIndex();
+  Status CheckViewpoints();
+  // Reads the `bytes`-long zstd frame at `offset` into `out`, which it must fill exactly.
+  Status Decompress(std::uint64_t offset, std::uint32_t bytes, std::uint32_t crc, std::span<std::uint8_t> out,
+                    const std::string& what);
   Status LoadInto(int entry, Slot& slot);
 
   std::string name_;
@@ -82,7 +94,8 @@ class PriorMapReader {
   std::uint64_t tile_section_ = 0;      // file offset of the tile section
   std::vector<std::int32_t> entry_of_;  // tile col + row * width_tiles -> entry, -1 absent
   std::vector<Slot> slots_;
-  std::vector<std::uint8_t> compressed_;  // the largest tile's compressed bytes
+  std::vector<std::uint8_t> compressed_;  // the largest tile's or viewpoint's compressed bytes
+  std::vector<std::uint8_t> viewpoint_cells_;  // the largest viewpoint's cells
   std::vector<std::uint8_t> unknown_;     // an absent tile
   struct ZstdContext;
   std::unique_ptr<ZstdContext> zstd_;
