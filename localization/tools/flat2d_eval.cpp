@@ -1,12 +1,19 @@
 // flat2d-eval: estimates against references.
-//   grid   structure precision and recall of a class grid against a truth grid (issue 6)
+//   grid       structure precision and recall of a class grid against a truth grid (issue 6)
+//   relations  the relations metric of the 2D SLAM benchmarks (Kuemmerle et al. 2009)
+//   traj       absolute trajectory error after rigid alignment
 // Exit status: 0 ok, 1 usage or option error, 2 a file cannot be read or is invalid.
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
+#include "localization/evaluation/relations.hpp"
+#include "localization/evaluation/trajectory_error.hpp"
+#include "localization/evaluation/trajectory_file.hpp"
 #include "maps/grid/class_grid_file.hpp"
 #include "maps/grid/structure_comparison.hpp"
 #include "maps/tools/cli_args.hpp"
@@ -19,6 +26,8 @@ constexpr std::string_view kTool = "flat2d-eval";
 
 constexpr const char* kUsage = R"(usage:
   flat2d-eval grid --truth A.yaml --grid B.yaml [--tolerance CELLS] [--observed-radius CELLS] [--json]
+  flat2d-eval relations --trajectory EST.tum (--relations FILE | --reference REF.tum) [options] [--json]
+  flat2d-eval traj --trajectory EST.tum --reference REF.tum [--no-align] [--max-gap S] [--json]
 
 grid: slammable cells of grid B against the occupied (slammable) cells of truth A, both
 map_server YAML + PGM files in one world frame (flat2d-sim's truth_map.yaml, flat2d-grid's
@@ -29,6 +38,24 @@ face) and found within --tolerance.
   --tolerance CELLS        default 1
   --observed-radius CELLS  default 2 (10 cm at 5 cm)
   --json                   one JSON object: precision, recall and the counts behind them
+
+relations: for each relation (t1, t2, d*), the estimate's d = x(t1)^-1 x(t2) and the error
+d*^-1 d; mean and standard deviation of |e_t| (m), |e_theta| (deg) and their squares, the
+four rows of the published tables. Relations come from a Freiburg .relations file ("t1 t2
+x y z roll pitch yaw") or are drawn from a reference trajectory: each pose with the next
+one --min-step metres further on, and each revisit (an earlier pose within --loop-radius
+after at least --loop-min-path metres of travel).
+  --relations FILE         Freiburg .relations file
+  --reference REF.tum      draw the relations from this trajectory instead
+  --write-relations FILE   write the relations used, in the Freiburg format
+  --min-step M             default 0.5
+  --loop-radius M          default 2
+  --loop-min-path M        default 10
+  --max-gap S              the estimate's poses around a relation's time at most S apart (default 1)
+
+traj: the estimate sampled at the reference's times, rigidly aligned to it (2D Horn),
+position RMSE, mean, median and max (m) and heading RMSE (deg).
+  --no-align               compare in the frames as given
 )";
 
 [[noreturn]] void Fail(int status, const std::string& message) { maps::cli::Fail(kTool, status, message); }
@@ -78,9 +105,113 @@ int EvalGrid(int argc, char** argv) {
   return 0;
 }
 
+using localization::evaluation::TimedPose;
+
+std::vector<TimedPose> ReadTrajectoryOrFail(const std::string& path) {
+  auto trajectory = localization::evaluation::ReadTrajectory(path);
+  if (!trajectory.ok()) Fail(2, trajectory.error().message);
+  return std::move(*trajectory);
+}
+
+void PrintMeanStd(const char* name, const localization::evaluation::MeanStd& v, const char* unit) {
+  std::printf("%-26s %.4f +/- %.4f %s\n", name, v.mean, v.std, unit);
+}
+
+int EvalRelations(int argc, char** argv) {
+  std::string trajectory_path, relations_path, reference_path, write_path;
+  localization::evaluation::RelationSampling sampling;
+  double max_gap = 1.0;
+  bool json = false;
+  for (int i = 0; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--trajectory") trajectory_path = value();
+    else if (arg == "--relations") relations_path = value();
+    else if (arg == "--reference") reference_path = value();
+    else if (arg == "--write-relations") write_path = value();
+    else if (arg == "--min-step") sampling.min_step_m = maps::cli::ParseNumber(kTool, arg, value());
+    else if (arg == "--loop-radius") sampling.loop_radius_m = maps::cli::ParseNumber(kTool, arg, value());
+    else if (arg == "--loop-min-path") sampling.loop_min_path_m = maps::cli::ParseNumber(kTool, arg, value());
+    else if (arg == "--max-gap") max_gap = maps::cli::ParseNumber(kTool, arg, value());
+    else if (arg == "--json") json = true;
+    else Fail(1, "relations: unknown argument " + std::string(arg) + "\n" + kUsage);
+  }
+  if (trajectory_path.empty() || relations_path.empty() == reference_path.empty()) {
+    Fail(1, std::string("relations needs --trajectory and one of --relations, --reference\n") + kUsage);
+  }
+  const std::vector<TimedPose> estimate = ReadTrajectoryOrFail(trajectory_path);
+  std::vector<localization::evaluation::Relation> relations;
+  if (!relations_path.empty()) {
+    auto read = localization::evaluation::ReadRelations(relations_path);
+    if (!read.ok()) Fail(2, read.error().message);
+    relations = std::move(*read);
+  } else {
+    relations = localization::evaluation::MakeRelations(ReadTrajectoryOrFail(reference_path), sampling);
+  }
+  if (!write_path.empty()) {
+    if (Status s = localization::evaluation::WriteRelations(relations, write_path); !s.ok()) Fail(2, s.error().message);
+  }
+  const auto e = localization::evaluation::EvaluateRelations(estimate, relations, max_gap);
+  if (e.relations == 0) Fail(2, "no relation falls within the trajectory's time (" + std::to_string(e.unmatched) + " outside)");
+  if (json) {
+    std::printf("{\"relations\":%zu,\"unmatched\":%zu,\"translation_mean_m\":%.6f,\"translation_std_m\":%.6f,"
+                "\"translation_sq_mean_m2\":%.6f,\"translation_sq_std_m2\":%.6f,\"rotation_mean_deg\":%.6f,"
+                "\"rotation_std_deg\":%.6f,\"rotation_sq_mean_deg2\":%.6f,\"rotation_sq_std_deg2\":%.6f}\n",
+                e.relations, e.unmatched, e.translation_m.mean, e.translation_m.std, e.translation_sq_m2.mean,
+                e.translation_sq_m2.std, e.rotation_deg.mean, e.rotation_deg.std, e.rotation_sq_deg2.mean,
+                e.rotation_sq_deg2.std);
+  } else {
+    std::printf("relations: %zu scored, %zu outside the trajectory\n", e.relations, e.unmatched);
+    PrintMeanStd("abs. translational", e.translation_m, "m");
+    PrintMeanStd("sq. translational", e.translation_sq_m2, "m^2");
+    PrintMeanStd("abs. rotational", e.rotation_deg, "deg");
+    PrintMeanStd("sq. rotational", e.rotation_sq_deg2, "deg^2");
+  }
+  return 0;
+}
+
+int EvalTraj(int argc, char** argv) {
+  std::string trajectory_path, reference_path;
+  bool align = true, json = false;
+  double max_gap = 1.0;
+  for (int i = 0; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--trajectory") trajectory_path = value();
+    else if (arg == "--reference") reference_path = value();
+    else if (arg == "--no-align") align = false;
+    else if (arg == "--max-gap") max_gap = maps::cli::ParseNumber(kTool, arg, value());
+    else if (arg == "--json") json = true;
+    else Fail(1, "traj: unknown argument " + std::string(arg) + "\n" + kUsage);
+  }
+  if (trajectory_path.empty() || reference_path.empty()) Fail(1, std::string("traj needs --trajectory and --reference\n") + kUsage);
+  const auto e = localization::evaluation::EvaluateTrajectory(ReadTrajectoryOrFail(trajectory_path),
+                                                              ReadTrajectoryOrFail(reference_path), align, max_gap);
+  if (e.poses == 0) Fail(2, "the trajectory covers none of the reference's times");
+  if (json) {
+    std::printf("{\"poses\":%zu,\"unmatched\":%zu,\"ate_rmse_m\":%.6f,\"ate_mean_m\":%.6f,\"ate_median_m\":%.6f,"
+                "\"ate_max_m\":%.6f,\"rotation_rmse_deg\":%.6f,\"aligned\":%s}\n",
+                e.poses, e.unmatched, e.rmse_m, e.mean_m, e.median_m, e.max_m, e.rotation_rmse_deg,
+                align ? "true" : "false");
+  } else {
+    std::printf("poses: %zu compared, %zu outside the trajectory\n", e.poses, e.unmatched);
+    std::printf("ATE: rmse %.4f m, mean %.4f m, median %.4f m, max %.4f m; heading rmse %.3f deg\n", e.rmse_m,
+                e.mean_m, e.median_m, e.max_m, e.rotation_rmse_deg);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::string_view(argv[1]) == "relations") return EvalRelations(argc - 2, argv + 2);
+  if (argc >= 2 && std::string_view(argv[1]) == "traj") return EvalTraj(argc - 2, argv + 2);
   if (argc >= 2 && std::string_view(argv[1]) == "grid") return EvalGrid(argc - 2, argv + 2);
   if (argc >= 2 && (std::string_view(argv[1]) == "--help" || std::string_view(argv[1]) == "-h")) {
     std::cout << kUsage;
