@@ -1,0 +1,339 @@
+#include "localization/mapping/map_builder.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include <Eigen/LU>
+
+#include "localization/graph/graph_optimizer.hpp"
+
+namespace flat2d::localization::mapping {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+MatcherLimits LimitsFor(const MapBuilderOptions& options) {
+  MatcherLimits limits;
+  limits.max_points = 4000;
+  const double side = 2.0 * (options.point_range_m + std::max(options.loop_window.linear, options.tracking_window.linear)) + 2.0;
+  const auto cells = static_cast<std::size_t>(std::ceil(side / options.match_resolution_m));
+  limits.max_map_cells = cells * cells;
+  limits.max_window_cells =
+      static_cast<int>(std::ceil(std::max(options.loop_window.linear, options.tracking_window.linear) /
+                                 options.match_resolution_m)) + 2;
+  limits.max_headings = 1024;
+  return limits;
+}
+
+MatcherOptions MatchOptionsFor() {
+  MatcherOptions options;
+  options.min_score = 0.0;  // judged here, per use
+  options.min_points = 20;
+  return options;
+}
+
+}  // namespace
+
+MapBuilder::MapBuilder(const MapBuilderOptions& options)
+    : options_(options), matcher_(LimitsFor(options), MatchOptionsFor()), scan_(LimitsFor(options).max_points) {}
+
+std::vector<Eigen::Vector2d> MapBuilder::PrepareScan(std::span<const Eigen::Vector2d> points) {
+  scan_.Clear();
+  for (const Eigen::Vector2d& p : points) {
+    if (p.norm() <= options_.point_range_m) scan_.Add(p);
+  }
+  scan_.VoxelDecimate(options_.decimation_m);
+  return {scan_.points().begin(), scan_.points().end()};
+}
+
+bool MapBuilder::AddScan(double time_s, const Se2& odometry, std::span<const Eigen::Vector2d> points) {
+  ++stats_.scans;
+  if (!keyframes_.empty()) {
+    const Se2 moved = keyframes_.back().odometry.Inverse() * odometry;
+    if (moved.translation().norm() < options_.keyframe_distance_m &&
+        std::abs(moved.theta()) < options_.keyframe_angle_rad) {
+      return false;
+    }
+  }
+  Keyframe keyframe;
+  keyframe.time_s = time_s;
+  keyframe.odometry = odometry;
+  keyframe.points = PrepareScan(points);
+  if (keyframes_.empty()) {
+    keyframe.estimate = has_anchor_ ? anchor_ : odometry;
+    keyframes_.push_back(std::move(keyframe));
+    graph_.AddNode(keyframes_.back().estimate, /*fixed=*/true);
+    tracking_factor_.push_back(-1);
+    ++stats_.keyframes;
+    return true;
+  }
+  const Keyframe& previous = keyframes_.back();
+  const Se2 step = ScaledStep(previous.odometry.Inverse() * odometry);
+  keyframe.path_m = previous.path_m + step.translation().norm();
+  keyframe.estimate = previous.estimate * step;
+  keyframes_.push_back(std::move(keyframe));
+  graph_.AddNode(keyframes_.back().estimate);
+  tracking_factor_.push_back(-1);
+  const std::size_t k = keyframes_.size() - 1;
+  odometry_factors_.push_back(graph_.betweens.size());
+  graph_.betweens.push_back({k - 1, k, step, OdometryInformation(step, options_.odometry)});
+  ++stats_.keyframes;
+
+  TrackNewest();
+  CloseLoops();
+  if (loops_since_optimization_ >= options_.optimize_every) OptimizeGraph();
+  return true;
+}
+
+MatchResult MapBuilder::MatchAgainst(std::size_t k, std::size_t first, std::size_t last, const Se2& prediction,
+                                     const SearchWindow& window) {
+  const auto start = Clock::now();
+  const double reach = options_.point_range_m + window.linear + 1.0;
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::max());
+  Eigen::Vector2d high = -low;
+  std::vector<Eigen::Vector2d> world;
+  std::vector<std::uint32_t> source;  // the keyframe of each point
+  for (std::size_t j = first; j <= last; ++j) {
+    if (j == k) continue;
+    for (const Eigen::Vector2d& p : keyframes_[j].points) {
+      const Eigen::Vector2d q = keyframes_[j].estimate * p;
+      if ((q - prediction.translation()).cwiseAbs().maxCoeff() > reach) continue;
+      world.push_back(q);
+      source.push_back(static_cast<std::uint32_t>(j));
+      low = low.cwiseMin(q);
+      high = high.cwiseMax(q);
+    }
+  }
+  MatchResult result;
+  result.status = MatchStatus::kTooFewPoints;
+  if (world.size() < 20) return result;
+  // The map must hold the prediction's window too, or the match is refused as outside it.
+  low = low.cwiseMin(prediction.translation() - Eigen::Vector2d::Constant(window.linear + 1.0));
+  high = high.cwiseMax(prediction.translation() + Eigen::Vector2d::Constant(window.linear + 1.0));
+  GridGeometry geometry;
+  geometry.resolution = options_.match_resolution_m;
+  geometry.origin = low - Eigen::Vector2d::Constant(2.0 * geometry.resolution);
+  geometry.width = static_cast<int>(std::ceil((high.x() - geometry.origin.x()) / geometry.resolution)) + 2;
+  geometry.height = static_cast<int>(std::ceil((high.y() - geometry.origin.y()) / geometry.resolution)) + 2;
+  MatchGrid map(geometry);
+  MarkVotedStructure(world, source, std::min<std::size_t>(options_.map_min_votes, last - first), map);
+  if (map.OccupiedCount() < 20 || !matcher_.SetMap(map).ok()) {
+    stats_.match_seconds += SecondsSince(start);
+    return result;
+  }
+  result = matcher_.Match(keyframes_[k].points, prediction, window);
+  stats_.match_seconds += SecondsSince(start);
+  return result;
+}
+
+void MapBuilder::MarkVotedStructure(const std::vector<Eigen::Vector2d>& world, const std::vector<std::uint32_t>& source,
+                                    std::size_t min_votes, MatchGrid& map) const {
+  // Votes per 2 x 2 block of cells, so a wall seen by two keyframes a centimetre apart
+  // still collects both; each keyframe votes once per block.
+  const GridGeometry& g = map.geometry();
+  const int block_width = (g.width + 1) / 2;
+  const std::size_t blocks = static_cast<std::size_t>(block_width) * static_cast<std::size_t>((g.height + 1) / 2);
+  std::vector<std::uint16_t> votes(blocks, 0);
+  std::vector<std::uint32_t> last_voter(blocks, std::numeric_limits<std::uint32_t>::max());
+  auto block_of = [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector2i cell = g.CellOf(p);
+    return static_cast<std::size_t>(cell.y() / 2) * static_cast<std::size_t>(block_width) +
+           static_cast<std::size_t>(cell.x() / 2);
+  };
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    const std::size_t b = block_of(world[i]);
+    if (last_voter[b] == source[i]) continue;
+    last_voter[b] = source[i];
+    if (votes[b] < std::numeric_limits<std::uint16_t>::max()) ++votes[b];
+  }
+  for (const Eigen::Vector2d& p : world) {
+    if (votes[block_of(p)] >= min_votes) map.MarkPoint(p);
+  }
+}
+
+Eigen::Matrix3d MapBuilder::MatchInformation(const MatchResult& match) const {
+  // The match covariance is in the map's axes; F2's translation error is in the vehicle's.
+  const Eigen::Matrix2d r = match.map_T_vehicle.Rotation();
+  Eigen::Matrix3d covariance = match.covariance;
+  covariance.topLeftCorner<2, 2>() = r.transpose() * match.covariance.topLeftCorner<2, 2>() * r;
+  covariance.topRightCorner<2, 1>() = r.transpose() * match.covariance.topRightCorner<2, 1>();
+  covariance.bottomLeftCorner<1, 2>() = covariance.topRightCorner<2, 1>().transpose();
+  const double floor_m = options_.match_sigma_floor_m * options_.match_sigma_floor_m;
+  const double floor_rad = options_.match_sigma_floor_rad * options_.match_sigma_floor_rad;
+  covariance += Eigen::Vector3d(floor_m, floor_m, floor_rad).asDiagonal().toDenseMatrix();
+  return covariance.inverse();
+}
+
+void MapBuilder::TrackNewest() {
+  const std::size_t k = keyframes_.size() - 1;
+  const std::size_t first = k > static_cast<std::size_t>(options_.local_map_keyframes)
+                                ? k - static_cast<std::size_t>(options_.local_map_keyframes)
+                                : 0;
+  const MatchResult match = MatchAgainst(k, first, k - 1, keyframes_[k].estimate, options_.tracking_window);
+  if (!match.ok() || match.score < options_.tracking_min_score) {
+    ++stats_.tracking_rejected;
+    return;
+  }
+  ++stats_.tracking_accepted;
+  const Keyframe& previous = keyframes_[k - 1];
+  const Se2 matched_step = previous.estimate.Inverse() * match.map_T_vehicle;
+  const Eigen::Matrix3d information = MatchInformation(match);
+  keyframes_[k].estimate = match.map_T_vehicle;
+  graph_.nodes[k].estimate = match.map_T_vehicle;
+  tracking_factor_[k] = static_cast<std::ptrdiff_t>(graph_.betweens.size());
+  graph_.betweens.push_back({k - 1, k, matched_step, information});
+  UpdateScale(previous.odometry.Inverse() * keyframes_[k].odometry, matched_step, information);
+}
+
+Se2 MapBuilder::ScaledStep(const Se2& step) const { return Se2(scale_ * step.translation(), step.theta()); }
+
+void MapBuilder::UpdateScale(const Se2& odometry_step, const Se2& matched_step, const Eigen::Matrix3d& information) {
+  if (!options_.estimate_odometry_scale) return;
+  const double distance = odometry_step.translation().norm();
+  if (distance < 0.1) return;  // turning on the spot says nothing of the scale
+  const Eigen::Vector2d along = odometry_step.translation() / distance;
+  // The information along the direction of travel (the match's is in the vehicle frame,
+  // the step's in the previous keyframe's; they differ by the step's turn, small).
+  // Only steps the scene pins down along the path count: in a corridor the match returns
+  // the prediction, which would pull the estimate towards itself.
+  const double along_information = along.dot(information.topLeftCorner<2, 2>() * along);
+  if (along_information < 1.0 / (options_.scale_max_sigma_m * options_.scale_max_sigma_m)) return;
+  scale_numerator_ += along.dot(matched_step.translation()) * distance;
+  scale_denominator_ += distance * distance;
+  ++scale_steps_;
+  if (scale_steps_ < 20) return;  // a few before the estimate is trusted
+  scale_ = std::clamp(scale_numerator_ / scale_denominator_, 1.0 - options_.max_scale_error,
+                      1.0 + options_.max_scale_error);
+  stats_.odometry_scale = scale_;
+}
+
+void MapBuilder::RescaleOdometryFactors() {
+  for (std::size_t i = 0; i < odometry_factors_.size(); ++i) {
+    const Se2 step = ScaledStep(keyframes_[i].odometry.Inverse() * keyframes_[i + 1].odometry);
+    graph::BetweenFactor& factor = graph_.betweens[odometry_factors_[i]];
+    factor.measurement = step;
+    factor.information = OdometryInformation(step, options_.odometry);
+  }
+}
+
+void MapBuilder::CloseLoops() {
+  const std::size_t k = keyframes_.size() - 1;
+  const Keyframe& current = keyframes_[k];
+  // The nearest candidates, at least 2 submap widths apart so each tries another place.
+  std::vector<std::pair<double, std::size_t>> near;
+  for (std::size_t j = 0; j < k && current.path_m - keyframes_[j].path_m >= options_.loop_min_path_m; ++j) {
+    const double d = (keyframes_[j].estimate.translation() - current.estimate.translation()).norm();
+    if (d <= options_.loop_radius_m) near.emplace_back(d, j);
+  }
+  std::sort(near.begin(), near.end());
+  std::vector<std::size_t> chosen;
+  for (const auto& [distance, j] : near) {
+    if (static_cast<int>(chosen.size()) >= options_.loop_candidates) break;
+    const bool distinct = std::all_of(chosen.begin(), chosen.end(), [&](std::size_t c) {
+      return std::abs(static_cast<long>(c) - static_cast<long>(j)) > 2 * options_.loop_submap_keyframes;
+    });
+    if (distinct) chosen.push_back(j);
+  }
+  const auto side = static_cast<std::size_t>(options_.loop_submap_keyframes);
+  for (std::size_t j : chosen) {
+    ++stats_.loop_candidates;
+    const std::size_t first = j > side ? j - side : 0;
+    std::size_t last = std::min(j + side, k - 1);
+    // The submap must not reach the keyframes the current one was just tracked against.
+    while (last > j && current.path_m - keyframes_[last].path_m < options_.loop_min_path_m) --last;
+    const MatchResult match = MatchAgainst(k, first, last, current.estimate, options_.loop_window);
+    if (!match.ok() || match.score < options_.loop_min_score) continue;
+    ++stats_.loop_accepted;
+    ++loops_since_optimization_;
+    graph_.mixture_betweens.push_back({j, k, keyframes_[j].estimate.Inverse() * match.map_T_vehicle,
+                                       graph::MakeNullHypothesisMixture(MatchInformation(match),
+                                                                        options_.loop_null_weight,
+                                                                        options_.loop_null_scale)});
+  }
+}
+
+void MapBuilder::OptimizeGraph() {
+  const auto start = Clock::now();
+  graph::OptimizerOptions optimizer;
+  optimizer.max_iterations = 30;
+  graph::Optimize(graph_, optimizer);
+  for (std::size_t i = 0; i < keyframes_.size(); ++i) keyframes_[i].estimate = graph_.nodes[i].estimate;
+  ++stats_.optimizations;
+  stats_.optimize_seconds += SecondsSince(start);
+  loops_since_optimization_ = 0;
+}
+
+void MapBuilder::RefineSweep() {
+  const std::size_t n = keyframes_.size();
+  const auto side = static_cast<std::size_t>(options_.refine_keyframes);
+  struct Refined {
+    Se2 pose;                   // world_T_vehicle against the two-sided local map
+    Eigen::Matrix3d covariance;  // vehicle frame, floored
+  };
+  std::vector<std::optional<Refined>> refined(n);
+  for (std::size_t k = 1; k < n; ++k) {
+    const std::size_t first = k > side ? k - side : 0;
+    const std::size_t last = std::min(n - 1, k + side);
+    const MatchResult match = MatchAgainst(k, first, last, keyframes_[k].estimate, options_.refine_window);
+    if (!match.ok() || match.score < options_.tracking_min_score) continue;
+    refined[k] = Refined{match.map_T_vehicle, MatchInformation(match).inverse()};
+  }
+  // Two neighbours refined against (nearly) the same map: their relative pose is what the
+  // map says, whatever error the map shares with both. The odometry scale is estimated
+  // afresh from these steps, free of the forward tracking's bias.
+  scale_numerator_ = scale_denominator_ = 0.0;
+  scale_steps_ = 0;
+  for (std::size_t k = 2; k < n; ++k) {
+    if (!refined[k] || !refined[k - 1]) continue;
+    ++stats_.refined;
+    const Se2 step = refined[k - 1]->pose.Inverse() * refined[k]->pose;
+    const Eigen::Matrix3d information = (refined[k - 1]->covariance + refined[k]->covariance).inverse();
+    UpdateScale(keyframes_[k - 1].odometry.Inverse() * keyframes_[k].odometry, step, information);
+    if (tracking_factor_[k] < 0) {
+      tracking_factor_[k] = static_cast<std::ptrdiff_t>(graph_.betweens.size());
+      graph_.betweens.push_back({k - 1, k, step, information});
+      continue;
+    }
+    graph::BetweenFactor& factor = graph_.betweens[static_cast<std::size_t>(tracking_factor_[k])];
+    factor.measurement = step;
+    factor.information = information;
+  }
+}
+
+void MapBuilder::Finish() {
+  if (options_.estimate_odometry_scale) RescaleOdometryFactors();
+  if (keyframes_.size() > 1) OptimizeGraph();
+  stats_.refined = 0;
+  for (int sweep = 0; sweep < options_.refine_sweeps && keyframes_.size() > 2; ++sweep) {
+    RefineSweep();
+    if (options_.estimate_odometry_scale) RescaleOdometryFactors();
+    OptimizeGraph();
+  }
+  stats_.loop_switched_off = 0;
+  for (const auto& factor : graph_.mixture_betweens) {
+    const Eigen::Vector3d error = graph::BetweenError(graph_.nodes[factor.from].estimate,
+                                                      graph_.nodes[factor.to].estimate, factor.measurement);
+    if (graph::SelectMixtureComponent(factor.mixture, error).component != 0) ++stats_.loop_switched_off;
+  }
+}
+
+Se2 MapBuilder::CorrectedPose(double time_s, const Se2& odometry) const {
+  if (keyframes_.empty()) return odometry;
+  auto correction = [](const Keyframe& k) { return k.estimate * k.odometry.Inverse(); };
+  auto after = std::lower_bound(keyframes_.begin(), keyframes_.end(), time_s,
+                                [](const Keyframe& k, double t) { return k.time_s < t; });
+  if (after == keyframes_.begin()) return correction(*after) * odometry;
+  if (after == keyframes_.end()) return correction(keyframes_.back()) * odometry;
+  const Keyframe& before = *(after - 1);
+  const double s = (time_s - before.time_s) / (after->time_s - before.time_s);
+  return Interpolate(correction(before), correction(*after), s) * odometry;
+}
+
+}  // namespace flat2d::localization::mapping
