@@ -1,0 +1,82 @@
+#include "localization/tools/drive_map_build.hpp"
+
+#include <cmath>
+
+#include "localization/tools/odometry_poses.hpp"
+
+namespace flat2d::localization {
+namespace {
+
+constexpr double kNsToS = 1e-9;
+
+Se2 Se2Of(const Eigen::Isometry2d& pose) {
+  return Se2(pose.translation(), std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)));
+}
+
+std::vector<Eigen::Vector2d> SlammableCells(const maps::ClassGrid& grid) {
+  std::vector<Eigen::Vector2d> points;
+  const maps::GridGeometry& g = grid.geometry();
+  for (int row = 0; row < g.height; ++row) {
+    for (int col = 0; col < g.width; ++col) {
+      if (grid.at({col, row}) == maps::CellClass::kSlammable) points.push_back(g.CellCenter({col, row}));
+    }
+  }
+  return points;
+}
+
+}  // namespace
+
+Result<DriveBuildResult> BuildFromDrive(const DriveBuildOptions& options) {
+  auto odometry = DeadReckonedPoses(options.dbc, options.odometry_config, options.can_log);
+  if (!odometry.ok()) return odometry.error();
+  if (odometry->size() < 2) return MakeError(options.can_log.string() + ": fewer than 2 odometry poses");
+
+  DriveBuildResult result;
+  mapping::MapBuilder builder(options.builder);
+  GridRunOptions pass;
+  pass.capture = options.capture;
+  pass.grid = options.grid;
+  pass.stream = options.stream;
+  pass.poses = *odometry;
+  pass.on_grid = [&](const maps::PublishedGrid& published) {
+    ++result.revolutions;
+    if (published.fans_without_pose > 0) return;  // outside the CAN log's time
+    const double time_s = static_cast<double>(published.start_ns) * kNsToS;
+    if (builder.keyframes().empty() && !options.anchor.empty()) {
+      Se2 anchor;
+      if (!evaluation::PoseAt(options.anchor, time_s, 1.0, anchor)) return;  // before the anchor's time
+      builder.SetAnchor(anchor);
+    }
+    builder.AddScan(time_s, Se2Of(published.local_T_grid), SlammableCells(*published.grid));
+  };
+  auto first = RunGrid(pass);
+  if (!first.ok()) return first.error();
+  if (first->unsupported) return MakeError(options.capture.string() + ": " + *first->unsupported);
+  builder.Finish();
+  if (builder.keyframes().empty()) return MakeError(options.capture.string() + ": no revolution within the CAN log's time");
+
+  std::vector<maps::StampedPose2d> corrected;
+  for (const maps::StampedPose2d& p : *odometry) {
+    const double time_s = static_cast<double>(p.time_ns) * kNsToS;
+    const Se2 odom(p.position, p.yaw);
+    const Se2 world = builder.CorrectedPose(time_s, odom);
+    result.odometry.push_back({time_s, odom});
+    result.estimate.push_back({time_s, world});
+    corrected.push_back({p.time_ns, world.translation(), world.theta()});
+  }
+  GridRunOptions second;
+  second.capture = options.capture;
+  second.grid = options.grid;
+  second.stream = options.stream;
+  second.poses = std::move(corrected);
+  second.accumulate = true;
+  second.accumulation = options.accumulation;
+  auto mosaic = RunGrid(second);
+  if (!mosaic.ok()) return mosaic.error();
+  result.mosaic = std::move(mosaic->grid);
+  result.keyframes = builder.keyframes();
+  result.stats = builder.stats();
+  return result;
+}
+
+}  // namespace flat2d::localization

@@ -1,0 +1,50 @@
+// A recorded drive (Velodyne capture + candump log + DBC) through the map builder
+// (localization/mapping/map_builder.hpp): `flat2d-map build --pcap`.
+//
+// Two passes over the capture. (1) Every complete revolution is gridded with the
+// dead-reckoned CAN poses (grid_run.hpp), and its slammable cells, in the vehicle frame,
+// are offered to the builder with the revolution's odometry pose; the builder keeps
+// keyframes, matches and closes loops. (2) The odometry poses are corrected by the
+// optimized keyframes (MapBuilder::CorrectedPose) and the capture is gridded again with
+// them, every revolution voting into the mosaic, so the map holds all revolutions, not only
+// the keyframes, without keeping any grid in memory between the passes.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "hal/common/error.hpp"
+#include "localization/evaluation/relations.hpp"
+#include "localization/mapping/map_builder.hpp"
+#include "localization/tools/grid_run.hpp"
+#include "maps/grid/class_grid.hpp"
+
+namespace flat2d::localization {
+
+struct DriveBuildOptions {
+  std::filesystem::path capture;
+  std::filesystem::path can_log;
+  std::filesystem::path dbc;
+  std::filesystem::path odometry_config;
+  maps::StructureGridOptions grid;
+  hal::velodyne::VelodyneStreamOptions stream;
+  mapping::MapBuilderOptions builder;
+  maps::AccumulationOptions accumulation;
+  // Where the first keyframe is in the map frame, looked up at its time (e.g. a GNSS fix,
+  // or the simulator's truth); empty: the odometry frame is the map frame.
+  std::vector<evaluation::TimedPose> anchor;
+};
+
+struct DriveBuildResult {
+  std::vector<evaluation::TimedPose> odometry;  // dead-reckoned, every CAN sample
+  std::vector<evaluation::TimedPose> estimate;  // ... corrected
+  std::vector<mapping::Keyframe> keyframes;
+  mapping::MapBuilderStats stats;
+  std::optional<maps::ClassGrid> mosaic;
+  std::uint64_t revolutions = 0;
+};
+
+Result<DriveBuildResult> BuildFromDrive(const DriveBuildOptions& options);
+
+}  // namespace flat2d::localization

@@ -1,0 +1,426 @@
+// flat2d-map: prior maps (issue 8). build: a drive or a 2D laser log through the map builder
+// into a prior map file; info: what a map file holds; render: a map (or a region of it) as
+// a picture or a map_server class grid.
+// Exit status: 0 ok, 1 usage or option error, 2 a file cannot be read, is invalid or cannot
+// be written, 3 nothing to map (no keyframe).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hal/carmen/carmen_log.hpp"
+#include "localization/evaluation/trajectory_file.hpp"
+#include "localization/mapping/carmen_map_build.hpp"
+#include "localization/tools/drive_map_build.hpp"
+#include "maps/grid/class_grid_file.hpp"
+#include "maps/grid/grid_crop.hpp"
+#include "maps/grid/structure_grid_config.hpp"
+#include "maps/prior_map/prior_map_file.hpp"
+#include "maps/prior_map/prior_map_reader.hpp"
+#include "maps/prior_map/prior_map_region.hpp"
+#include "maps/prior_map/prior_map_summary.hpp"
+#include "maps/prior_map/viewpoint.hpp"
+#include "maps/render/class_grid_image.hpp"
+#include "maps/render/png_writer.hpp"
+#include "maps/tools/cli_args.hpp"
+
+namespace {
+
+using namespace flat2d;
+using localization::evaluation::TimedPose;
+
+constexpr std::string_view kTool = "flat2d-map";
+
+constexpr const char* kUsage = R"(usage:
+  flat2d-map build --carmen LOG --out MAP [options]
+  flat2d-map build --pcap CAPTURE --can LOG --dbc DBC --odometry CONFIG --out MAP [options]
+  flat2d-map info MAP [--json]
+  flat2d-map render MAP --out FILE [--region XMIN,YMIN,XMAX,YMAX]
+
+build: keyframes every --keyframe-distance metres or --keyframe-angle radians, each
+scan-matched against the previous keyframes (tracking) and against earlier keyframes near
+it (loop closures, max-mixture factors), the pose graph optimized, the mosaic of every scan
+at its optimized pose written as a prior map with viewpoint sub-maps.
+  --carmen LOG          a CARMEN 2D laser log (plain or .gz); its poses are the reference,
+                        corrupted into odometry by the seeded noise model below
+  --pcap CAPTURE --can LOG --dbc DBC --odometry CONFIG
+                        a Velodyne drive: structure grids per revolution, CAN odometry
+  --config FILE         drive: StructureGridOptions (default: the shipped structure_grid.textproto)
+  --anchor FILE.tum     drive: the first keyframe's map-frame pose, looked up at its time
+                        (GNSS, the simulator's truth.tum); default: the odometry frame
+  --out MAP             the prior map file
+  --png FILE            preview: the map, the optimized trajectory (blue), viewpoints (green)
+  --trajectory FILE     the optimized trajectory (TUM): every scan, or every CAN sample
+  --odometry-out FILE   the odometry the builder was given (TUM)
+  --reference-out FILE  carmen: the log's own poses (TUM)
+  --json                a build summary as one JSON object on stdout
+  --seed N              carmen: noise seed (default 1)
+  --max-scans N         carmen: only the log's first N scans
+  --noise-translation F --noise-lateral F --noise-rotation F --noise-rotation-per-m R
+  --noise-scale F       carmen: noise model (defaults 0.05, 0.02, 0.05, 0.01 rad/m, 0.01)
+  --keyframe-distance M (default 0.5) --keyframe-angle RAD (default 0.25)
+  --loop-radius M       (default 4) --loop-min-path M (default 8) --loop-min-score S (0.55)
+  --loop-candidates N   nearest earlier keyframes tried per keyframe (default 2)
+  --local-map-keyframes N  keyframes a new one is tracked against (default 40)
+  --refine-sweeps N     final sweeps matching each keyframe against both sides (default 2)
+  --map-min-votes N     keyframes that must see a local-map cell (default 2)
+  --odometry-sigma T,R,RM
+                        the odometry factors' standard deviation: T of the distance, R of
+                        the turn, RM rad per metre (default: the noise model for carmen,
+                        0.01,0.01,0.001 for drives)
+  --match-floor-m M --match-floor-rad R
+                        smallest standard deviation given a match (default 0.01, 0.002)
+  --resolution M        carmen: mosaic cell size (default 0.05; drives use the grid's)
+  --tile-cells N        cells a tile side (default 256)
+  --viewpoint-spacing M a viewpoint sub-map every M metres of the drive (default 10; 0: none)
+  --viewpoint-range M   their radius (default 20)
+  --enu LAT,LON,ALT | --utm ZONE,N|S,EASTING,NORTHING
+                        georeference of the map frame
+info: tiles, mapped area, file bytes, resolution, georeference (--json: one JSON object).
+render: FILE ending in .png is a picture in the thesis' colours; otherwise FILE (without
+.yaml/.pgm) is the stem of a map_server class grid (as flat2d-grid --out writes), which
+flat2d-eval grid compares with a truth map. --region clips to a box in the map frame.
+)";
+
+[[noreturn]] void Fail(int status, const std::string& message) { maps::cli::Fail(kTool, status, message); }
+
+// The odometry factors' uncertainty for a drive's CAN odometry (wheel speeds and a gyro):
+// 1 % of the distance, 1 % of the turn and 0.05 deg per metre, 1 sigma.
+constexpr localization::mapping::OdometryNoiseModel kDriveOdometrySigma{0.01, 0.01, 0.01, 0.001, 0.0, 0};
+
+struct BuildArgs {
+  std::optional<std::string> carmen, pcap, can, dbc, odometry, config, anchor;
+  std::string out;
+  std::optional<std::string> png, trajectory, odometry_out, reference_out;
+  bool json = false;
+  localization::mapping::MapBuilderOptions builder;
+  localization::mapping::OdometryNoiseModel noise;
+  std::optional<localization::mapping::OdometryNoiseModel> odometry_sigma;
+  double resolution_m = 0.05;
+  std::int64_t max_scans = 0;  // carmen: 0 = all
+  int tile_cells = 256;
+  double viewpoint_spacing_m = 10.0;
+  double viewpoint_range_m = 20.0;
+  maps::Georeference georeference;
+};
+
+std::vector<double> ParseList(std::string_view flag, const std::string& text, std::size_t count) {
+  std::vector<double> values;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string part = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    values.push_back(maps::cli::ParseNumber(kTool, flag, part.c_str()));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (values.size() != count) Fail(1, std::string(flag) + " takes " + std::to_string(count) + " comma-separated numbers");
+  return values;
+}
+
+maps::Georeference ParseUtm(const std::string& text) {
+  // ZONE,N|S,EASTING,NORTHING
+  const auto first = text.find(',');
+  const auto second = first == std::string::npos ? first : text.find(',', first + 1);
+  if (second == std::string::npos) Fail(1, "--utm takes ZONE,N|S,EASTING,NORTHING");
+  const std::string hemisphere = text.substr(first + 1, second - first - 1);
+  if (hemisphere != "N" && hemisphere != "S") Fail(1, "--utm: hemisphere must be N or S");
+  maps::Georeference g;
+  auto* utm = g.mutable_utm();
+  utm->set_zone(static_cast<int>(maps::cli::ParseInteger(kTool, "--utm", text.substr(0, first).c_str(), 1, 60)));
+  utm->set_northern(hemisphere == "N");
+  const auto offsets = ParseList("--utm", text.substr(second + 1), 2);
+  utm->set_easting_offset_m(offsets[0]);
+  utm->set_northing_offset_m(offsets[1]);
+  return g;
+}
+
+BuildArgs ParseBuild(int argc, char** argv) {
+  BuildArgs a;
+  for (int i = 0; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
+      return argv[++i];
+    };
+    auto number = [&] { return maps::cli::ParseNumber(kTool, arg, value()); };
+    if (arg == "--carmen") a.carmen = value();
+    else if (arg == "--pcap") a.pcap = value();
+    else if (arg == "--can") a.can = value();
+    else if (arg == "--dbc") a.dbc = value();
+    else if (arg == "--odometry") a.odometry = value();
+    else if (arg == "--config") a.config = value();
+    else if (arg == "--anchor") a.anchor = value();
+    else if (arg == "--out") a.out = value();
+    else if (arg == "--png") a.png = value();
+    else if (arg == "--trajectory") a.trajectory = value();
+    else if (arg == "--odometry-out") a.odometry_out = value();
+    else if (arg == "--reference-out") a.reference_out = value();
+    else if (arg == "--json") a.json = true;
+    else if (arg == "--seed") a.noise.seed = static_cast<std::uint64_t>(maps::cli::ParseInteger(kTool, arg, value(), 0, INT64_MAX));
+    else if (arg == "--noise-translation") a.noise.translation_fraction = number();
+    else if (arg == "--noise-lateral") a.noise.lateral_fraction = number();
+    else if (arg == "--noise-rotation") a.noise.rotation_fraction = number();
+    else if (arg == "--noise-rotation-per-m") a.noise.rotation_per_metre = number();
+    else if (arg == "--noise-scale") a.noise.scale_sigma = number();
+    else if (arg == "--keyframe-distance") a.builder.keyframe_distance_m = number();
+    else if (arg == "--keyframe-angle") a.builder.keyframe_angle_rad = number();
+    else if (arg == "--loop-radius") a.builder.loop_radius_m = number();
+    else if (arg == "--loop-min-path") a.builder.loop_min_path_m = number();
+    else if (arg == "--loop-min-score") a.builder.loop_min_score = number();
+    else if (arg == "--loop-candidates") a.builder.loop_candidates = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 0, 100));
+    else if (arg == "--local-map-keyframes") a.builder.local_map_keyframes = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1000));
+    else if (arg == "--refine-sweeps") a.builder.refine_sweeps = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 0, 10));
+    else if (arg == "--map-min-votes") a.builder.map_min_votes = static_cast<std::size_t>(maps::cli::ParseInteger(kTool, arg, value(), 1, 100));
+    else if (arg == "--odometry-sigma") {
+      const auto v = ParseList(arg, value(), 3);
+      a.odometry_sigma = localization::mapping::OdometryNoiseModel{v[0], v[0], v[1], v[2], 0.0, 0};
+    } else if (arg == "--match-floor-m") a.builder.match_sigma_floor_m = number();
+    else if (arg == "--match-floor-rad") a.builder.match_sigma_floor_rad = number();
+    else if (arg == "--resolution") a.resolution_m = number();
+    else if (arg == "--max-scans") a.max_scans = maps::cli::ParseInteger(kTool, arg, value(), 2, INT64_MAX);
+    else if (arg == "--tile-cells") a.tile_cells = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 16, maps::kMaxTileCells));
+    else if (arg == "--viewpoint-spacing") a.viewpoint_spacing_m = number();
+    else if (arg == "--viewpoint-range") a.viewpoint_range_m = number();
+    else if (arg == "--enu") {
+      const auto v = ParseList(arg, value(), 3);
+      auto* enu = a.georeference.mutable_enu();
+      enu->set_latitude_deg(v[0]);
+      enu->set_longitude_deg(v[1]);
+      enu->set_altitude_m(v[2]);
+    } else if (arg == "--utm") a.georeference = ParseUtm(value());
+    else if (arg == "--help" || arg == "-h") {
+      std::cout << kUsage;
+      std::exit(0);
+    } else Fail(1, "build: unknown argument " + std::string(arg) + "\n" + kUsage);
+  }
+  if (a.out.empty()) Fail(1, "build needs --out MAP");
+  if (a.carmen.has_value() == a.pcap.has_value()) Fail(1, "build needs exactly one of --carmen and --pcap");
+  if (a.pcap && (!a.can || !a.dbc || !a.odometry)) Fail(1, "build --pcap needs --can, --dbc and --odometry");
+  if (!(a.resolution_m > 0.0) || !(a.viewpoint_range_m > 0.0) || a.viewpoint_spacing_m < 0.0 ||
+      !(a.builder.keyframe_distance_m >= 0.0)) {
+    Fail(1, "--resolution and --viewpoint-range must be positive, --viewpoint-spacing and --keyframe-distance >= 0");
+  }
+  a.builder.odometry = a.odometry_sigma.value_or(a.carmen ? a.noise : kDriveOdometrySigma);
+  return a;
+}
+
+// What both sources hand to the writer.
+struct BuiltMap {
+  maps::ClassGrid mosaic{maps::GridGeometry{}};
+  std::vector<TimedPose> estimate, odometry, reference;
+  std::vector<localization::mapping::Keyframe> keyframes;
+  localization::mapping::MapBuilderStats stats;
+  std::string source;
+};
+
+BuiltMap BuildCarmen(const BuildArgs& a) {
+  auto log = hal::carmen::ReadCarmenLaserScans(*a.carmen);
+  if (!log.ok()) Fail(2, log.error().message);
+  if (a.max_scans > 0 && log->scans.size() > static_cast<std::size_t>(a.max_scans)) {
+    log->scans.resize(static_cast<std::size_t>(a.max_scans));
+  }
+  localization::mapping::CarmenBuildOptions options;
+  options.builder = a.builder;
+  options.noise = a.noise;
+  options.mosaic_resolution_m = a.resolution_m;
+  auto built = localization::mapping::BuildFromCarmen(log->scans, options);
+  if (!built.ok()) Fail(3, built.error().message);
+  BuiltMap out;
+  out.mosaic = std::move(built->mosaic);
+  out.estimate = std::move(built->estimate);
+  out.odometry = std::move(built->odometry);
+  out.reference = std::move(built->reference);
+  out.keyframes = std::move(built->keyframes);
+  out.stats = built->stats;
+  out.source = "carmen " + *a.carmen + ", odometry noise seed " + std::to_string(a.noise.seed);
+  return out;
+}
+
+std::string DefaultGridConfig() {
+  for (const char* candidate : {FLAT2D_INSTALLED_GRID_CONFIG, FLAT2D_SOURCE_GRID_CONFIG}) {
+    if (std::FILE* f = std::fopen(candidate, "r")) {
+      std::fclose(f);
+      return candidate;
+    }
+  }
+  return FLAT2D_SOURCE_GRID_CONFIG;
+}
+
+BuiltMap BuildDrive(const BuildArgs& a) {
+  localization::DriveBuildOptions options;
+  options.capture = *a.pcap;
+  options.can_log = *a.can;
+  options.dbc = *a.dbc;
+  options.odometry_config = *a.odometry;
+  auto grid = maps::LoadStructureGridOptions(a.config.value_or(DefaultGridConfig()));
+  if (!grid.ok()) Fail(2, grid.error().message);
+  options.grid = *grid;
+  options.builder = a.builder;
+  options.builder.point_range_m = std::min(options.builder.point_range_m, grid->size_m() / 2.0);
+  if (a.anchor) {
+    auto anchor = localization::evaluation::ReadTrajectory(*a.anchor);
+    if (!anchor.ok()) Fail(2, anchor.error().message);
+    options.anchor = std::move(*anchor);
+  }
+  auto built = localization::BuildFromDrive(options);
+  if (!built.ok()) Fail(3, built.error().message);
+  if (!built->mosaic) Fail(3, "no revolution could be placed in the mosaic");
+  BuiltMap out;
+  out.mosaic = std::move(*built->mosaic);
+  out.estimate = std::move(built->estimate);
+  out.odometry = std::move(built->odometry);
+  out.keyframes = std::move(built->keyframes);
+  out.stats = built->stats;
+  out.source = "drive " + *a.pcap + " + " + *a.can;
+  return out;
+}
+
+// A viewpoint sub-map every `spacing` metres along the keyframes' path.
+std::vector<maps::ViewpointGrid> MakeViewpoints(const BuiltMap& map, double spacing, double range) {
+  std::vector<maps::ViewpointGrid> viewpoints;
+  if (spacing <= 0.0) return viewpoints;
+  double next = 0.0;
+  for (const auto& k : map.keyframes) {
+    if (k.path_m < next) continue;
+    next = k.path_m + spacing;
+    viewpoints.push_back({k.estimate.x(), k.estimate.y(), k.estimate.theta(), k.time_s,
+                          maps::VisibleFrom(map.mosaic, k.estimate.translation(), range)});
+  }
+  return viewpoints;
+}
+
+void WritePreview(const BuiltMap& map, const std::vector<maps::ViewpointGrid>& viewpoints, const std::string& path) {
+  maps::RgbImage image = maps::RenderClassGrid(map.mosaic);
+  const maps::GridGeometry& g = map.mosaic.geometry();
+  auto plot = [&](const Eigen::Vector2d& p, maps::Rgb colour, int radius) {
+    const int col = static_cast<int>(std::floor((p.x() - g.origin.x()) / g.resolution_m));
+    const int row = g.height - 1 - static_cast<int>(std::floor((p.y() - g.origin.y()) / g.resolution_m));
+    for (int dr = -radius; dr <= radius; ++dr)
+      for (int dc = -radius; dc <= radius; ++dc) image.SetClipped(col + dc, row + dr, colour);
+  };
+  for (const TimedPose& p : map.estimate) plot(p.pose.translation(), {30, 90, 230}, 0);
+  for (const auto& v : viewpoints) plot({v.x_m, v.y_m}, {20, 170, 40}, 2);
+  if (Status written = maps::WritePng(image, path); !written.ok()) Fail(2, written.error().message);
+}
+
+void WriteTrajectoryOrFail(const std::vector<TimedPose>& trajectory, const std::optional<std::string>& path) {
+  if (!path) return;
+  if (Status s = localization::evaluation::WriteTrajectory(trajectory, *path); !s.ok()) Fail(2, s.error().message);
+}
+
+int Build(int argc, char** argv) {
+  const BuildArgs a = ParseBuild(argc, argv);
+  BuiltMap map = a.carmen ? BuildCarmen(a) : BuildDrive(a);
+  if (auto cropped = maps::CropToObserved(map.mosaic, 4)) map.mosaic = std::move(*cropped);
+  const auto viewpoints = MakeViewpoints(map, a.viewpoint_spacing_m, a.viewpoint_range_m);
+
+  maps::PriorMapWriteOptions write;
+  write.tile_cells = a.tile_cells;
+  write.georeference = a.georeference;
+  write.created_by = "flat2d-map build (flat2d " FLAT2D_VERSION ")";
+  write.source = map.source;
+  if (Status s = maps::WritePriorMap(map.mosaic, a.out, write, viewpoints); !s.ok()) Fail(2, s.error().message);
+  if (a.png) WritePreview(map, viewpoints, *a.png);
+  WriteTrajectoryOrFail(map.estimate, a.trajectory);
+  WriteTrajectoryOrFail(map.odometry, a.odometry_out);
+  WriteTrajectoryOrFail(map.reference, a.reference_out);
+
+  auto reader = maps::PriorMapReader::Open(a.out, 1);
+  if (!reader.ok()) Fail(2, reader.error().message);
+  const maps::PriorMapSummary summary = maps::SummarizePriorMap(*reader);
+  const auto& st = map.stats;
+  if (a.json) {
+    std::printf("{\"map\":%s,\"scans\":%llu,\"keyframes\":%llu,\"tracking_accepted\":%llu,\"tracking_rejected\":%llu,"
+                "\"loop_candidates\":%llu,\"loop_closures\":%llu,\"loop_closures_switched_off\":%llu,"
+                "\"optimizations\":%llu,\"optimize_seconds\":%.3f,\"match_seconds\":%.3f,\"viewpoints\":%zu,"
+                "\"odometry_scale\":%.6f}\n",
+                maps::SummaryJson(summary).c_str(), static_cast<unsigned long long>(st.scans),
+                static_cast<unsigned long long>(st.keyframes), static_cast<unsigned long long>(st.tracking_accepted),
+                static_cast<unsigned long long>(st.tracking_rejected), static_cast<unsigned long long>(st.loop_candidates),
+                static_cast<unsigned long long>(st.loop_accepted), static_cast<unsigned long long>(st.loop_switched_off),
+                static_cast<unsigned long long>(st.optimizations), st.optimize_seconds, st.match_seconds,
+                viewpoints.size(), st.odometry_scale);
+  } else {
+    std::printf("%s: %llu scans, %llu keyframes; tracking %llu accepted, %llu rejected; loop closures %llu of %llu "
+                "candidates (%llu switched off by the robust mixture); odometry scale %.4f; %zu viewpoints\n",
+                a.out.c_str(), static_cast<unsigned long long>(st.scans), static_cast<unsigned long long>(st.keyframes),
+                static_cast<unsigned long long>(st.tracking_accepted), static_cast<unsigned long long>(st.tracking_rejected),
+                static_cast<unsigned long long>(st.loop_accepted), static_cast<unsigned long long>(st.loop_candidates),
+                static_cast<unsigned long long>(st.loop_switched_off), st.odometry_scale, viewpoints.size());
+    std::printf("%s", maps::SummaryText(summary).c_str());
+  }
+  return 0;
+}
+
+int Info(int argc, char** argv) {
+  std::optional<std::string> path;
+  bool json = false;
+  for (int i = 0; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--json") json = true;
+    else if (!arg.starts_with("-") && !path) path = argv[i];
+    else Fail(1, "info: unknown argument " + std::string(arg) + "\n" + kUsage);
+  }
+  if (!path) Fail(1, std::string("info needs a MAP\n") + kUsage);
+  auto reader = maps::PriorMapReader::Open(*path, 1);
+  if (!reader.ok()) Fail(2, reader.error().message);
+  const maps::PriorMapSummary summary = maps::SummarizePriorMap(*reader);
+  std::printf("%s", json ? (maps::SummaryJson(summary) + "\n").c_str()
+                         : maps::SummaryText(summary).c_str());
+  return 0;
+}
+
+int Render(int argc, char** argv) {
+  std::optional<std::string> path, out, region_text;
+  for (int i = 0; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--out") out = value();
+    else if (arg == "--region") region_text = value();
+    else if (!arg.starts_with("-") && !path) path = argv[i];
+    else Fail(1, "render: unknown argument " + std::string(arg) + "\n" + kUsage);
+  }
+  if (!path || !out) Fail(1, std::string("render needs MAP and --out FILE\n") + kUsage);
+  auto reader = maps::PriorMapReader::Open(*path, 16);
+  if (!reader.ok()) Fail(2, reader.error().message);
+  std::optional<maps::MapRegion> region = maps::StoredExtent(*reader);
+  if (region_text) {
+    const auto v = ParseList("--region", *region_text, 4);
+    region = maps::MapRegion{{v[0], v[1]}, {v[2], v[3]}};
+  }
+  if (!region) Fail(3, *path + ": the map stores no tile");
+  auto grid = maps::ReadRegion(*reader, *region);
+  if (!grid.ok()) Fail(2, grid.error().message);
+  std::string target = *out;
+  Status written = Status::Ok();
+  if (target.ends_with(".png")) {
+    written = maps::WritePng(maps::RenderClassGrid(*grid), target);
+  } else {
+    if (target.ends_with(".yaml") || target.ends_with(".pgm")) target.resize(target.size() - (target.ends_with(".pgm") ? 4 : 5));
+    written = maps::WriteClassGrid(*grid, target);
+  }
+  if (!written.ok()) Fail(2, written.error().message);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string_view command = argc >= 2 ? argv[1] : "";
+  if (command == "build") return Build(argc - 2, argv + 2);
+  if (command == "info") return Info(argc - 2, argv + 2);
+  if (command == "render") return Render(argc - 2, argv + 2);
+  if (command == "--help" || command == "-h") {
+    std::cout << kUsage;
+    return 0;
+  }
+  Fail(1, std::string("unknown or missing command\n") + kUsage);
+}

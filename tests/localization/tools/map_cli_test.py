@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""flat2d-map and flat2d-eval (relations, traj) as users' scripts call them: a simulated
+drive built into a prior map against its truth map and trajectory; the map's info and
+renders; a real 2D laser log built and judged by the relations metric; exit statuses on
+bad input.
+
+usage: map_cli_test.py FLAT2D_MAP FLAT2D_EVAL FLAT2D_SIM DATA_DIR SOURCE_DIR WORK_DIR [quick]
+The real-log test skips (with a message) when the shared data folder is absent. "quick"
+(the sanitizer build) runs the same commands on the first 25 s of the drive and 60 scans of
+the log, and checks what they write but not the accuracy, which the release build checks.
+"""
+import json
+import os
+import subprocess
+import sys
+import unittest
+
+MAP, EVAL, SIM, SOURCE, WORK = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[5], sys.argv[6]
+DATA = os.environ.get("FLAT2D_DATA") or sys.argv[4]
+SIM_ODOMETRY = os.path.join(SOURCE, "packaging", "config", "odometry", "flat2d_sim.textproto")
+QUICK = len(sys.argv) > 7 and sys.argv[7] == "quick"
+
+
+def run(tool, *args):
+    return subprocess.run([tool, *args], capture_output=True, text=True, timeout=1200)
+
+
+class DriveMap(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        # The occluders world's mapping drive: round a row of boxes in a walled room, 101 m.
+        os.makedirs(WORK, exist_ok=True)
+        cls.drive = os.path.join(WORK, "occluders")
+        duration = ["--duration", "25"] if QUICK else []
+        result = run(SIM, "--world", "occluders", "--drive", "0", "--seed", "5", "--sensor", "vlp16",
+                     *duration, "--out", cls.drive)
+        assert result.returncode == 0, result.stderr
+        cls.map = os.path.join(WORK, "occluders.f2m")
+        d = cls.drive
+        cls.build = run(MAP, "build", "--pcap", os.path.join(d, "lidar.pcap"), "--can", os.path.join(d, "can.log"),
+                        "--dbc", os.path.join(d, "vehicle.dbc"), "--odometry", SIM_ODOMETRY,
+                        "--anchor", os.path.join(d, "truth.tum"), "--out", cls.map,
+                        "--png", os.path.join(WORK, "occluders_map.png"),
+                        "--trajectory", os.path.join(WORK, "occluders_map.tum"),
+                        "--enu", "48.0125,7.8345,280", "--json")
+
+    def test_build_summary(self):
+        self.assertEqual(self.build.returncode, 0, self.build.stderr)
+        summary = json.loads(self.build.stdout)
+        for key in ("map", "scans", "keyframes", "tracking_accepted", "loop_closures", "loop_closures_switched_off",
+                    "viewpoints", "odometry_scale"):
+            self.assertIn(key, summary)
+        self.assertGreater(summary["keyframes"], 40 if QUICK else 180)  # 101 m at a keyframe per 0.5 m
+        self.assertGreater(summary["tracking_accepted"], 0.9 * summary["keyframes"])
+        self.assertGreater(summary["viewpoints"], 2 if QUICK else 8)
+        self.assertAlmostEqual(summary["odometry_scale"], 1.0, delta=0.02)
+        self.assertTrue(os.path.getsize(os.path.join(WORK, "occluders_map.png")) > 1000)
+
+    def test_map_matches_the_truth_map(self):
+        self.assertEqual(self.build.returncode, 0, self.build.stderr)
+        stem = os.path.join(WORK, "occluders_render")
+        result = run(MAP, "render", self.map, "--out", stem + ".yaml")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        result = run(EVAL, "grid", "--truth", os.path.join(self.drive, "truth_map.yaml"), "--grid", stem + ".yaml",
+                     "--json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        grid = json.loads(result.stdout)
+        if QUICK:
+            return
+        self.assertGreater(grid["precision"], PRECISION, grid)
+        self.assertGreater(grid["recall"], RECALL, grid)
+
+    def test_trajectory_against_the_truth(self):
+        self.assertEqual(self.build.returncode, 0, self.build.stderr)
+        result = run(EVAL, "traj", "--trajectory", os.path.join(WORK, "occluders_map.tum"),
+                     "--reference", os.path.join(self.drive, "truth.tum"), "--no-align", "--json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        ate = json.loads(result.stdout)
+        self.assertGreater(ate["poses"], 1000)
+        if not QUICK:
+            self.assertLess(ate["ate_rmse_m"], ATE_RMSE_M, ate)
+
+    def test_info_and_renders(self):
+        self.assertEqual(self.build.returncode, 0, self.build.stderr)
+        result = run(MAP, "info", self.map, "--json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        info = json.loads(result.stdout)
+        for key in ("tiles", "mapped_area_m2", "file_bytes", "resolution_m", "georeference"):
+            self.assertIn(key, info)
+        self.assertEqual(info["file_bytes"], os.path.getsize(self.map))
+        self.assertAlmostEqual(info["resolution_m"], 0.05)
+        self.assertTrue(info["georeference"].startswith("ENU 48.0125"), info["georeference"])
+        self.assertGreater(info["mapped_area_m2"], 500)  # the room is 57 x 30 m
+        text = run(MAP, "info", self.map)
+        self.assertIn("mapped area:", text.stdout)
+        png = os.path.join(WORK, "occluders_region.png")
+        result = run(MAP, "render", self.map, "--out", png, "--region", "0,0,10,10")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(png, "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_bad_input(self):
+        self.assertEqual(run(MAP, "build", "--out", os.path.join(WORK, "x.f2m")).returncode, 1)
+        self.assertEqual(run(MAP, "build", "--carmen", "/nonexistent.log", "--out", os.path.join(WORK, "x.f2m")).returncode, 2)
+        self.assertEqual(run(MAP, "info", "/nonexistent.f2m").returncode, 2)
+        self.assertEqual(run(MAP, "frobnicate").returncode, 1)
+        self.assertEqual(run(MAP, "build", "--carmen", "a", "--out", "b", "--keyframe-distance", "x").returncode, 1)
+        damaged = os.path.join(WORK, "damaged.f2m")
+        with open(damaged, "wb") as f:
+            f.write(b"FLAT2DMP" + b"\x01\x00\x00\x00" + b"\xff\xff\x00\x00" + b"\x00" * 8)
+        result = run(MAP, "info", damaged)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("header length", result.stderr)
+        self.assertEqual(run(MAP, "render", self.map, "--out", os.path.join(WORK, "r.png"),
+                             "--region", "1000,1000,1010,1010").returncode, 2)
+        self.assertEqual(run(EVAL, "relations", "--trajectory", "/nonexistent.tum",
+                             "--reference", "/nonexistent.tum").returncode, 2)
+        self.assertEqual(run(EVAL, "relations", "--trajectory", "a.tum").returncode, 1)
+
+
+class LaserLogMap(unittest.TestCase):
+    def test_csail_log_with_noisy_odometry(self):
+        log = os.path.join(DATA, "slam2d", "corrected_logs", "csail-corrected.log.gz")
+        if not os.path.exists(log):
+            self.skipTest(f"no 2D laser logs at {log} (set FLAT2D_DATA to the shared data folder)")
+        out = os.path.join(WORK, "csail")
+        scans = 60 if QUICK else 150
+        result = run(MAP, "build", "--carmen", log, "--max-scans", str(scans), "--out", out + ".f2m",
+                     "--trajectory", out + ".tum", "--reference-out", out + ".ref.tum",
+                     "--odometry-out", out + ".odom.tum", "--json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(json.loads(result.stdout)["scans"], scans)
+        relations = os.path.join(WORK, "csail.relations")
+        scores = {}
+        for name in ("", ".odom"):
+            result = run(EVAL, "relations", "--trajectory", out + name + ".tum", "--reference", out + ".ref.tum",
+                         "--write-relations", relations, "--json")
+            self.assertEqual(result.returncode, 0, result.stderr)
+            scores[name] = json.loads(result.stdout)
+        # The builder removes most of the noise it was given.
+        if not QUICK:
+            self.assertLess(scores[""]["translation_mean_m"], 0.05, scores)
+            self.assertGreater(scores[".odom"]["translation_mean_m"], 3 * scores[""]["translation_mean_m"], scores)
+        # The relations it wrote (6 decimals) read back in the Freiburg format and score the same.
+        result = run(EVAL, "relations", "--trajectory", out + ".tum", "--relations", relations, "--json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertAlmostEqual(json.loads(result.stdout)["translation_mean_m"], scores[""]["translation_mean_m"], 3)
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1], verbosity=2)
