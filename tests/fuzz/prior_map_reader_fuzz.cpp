@@ -1,5 +1,6 @@
 // libFuzzer target: arbitrary bytes as a prior map file into PriorMapReader, then every
-// listed tile (at most 64) read through a 4-tile cache and a few ClassAt queries.
+// listed tile (at most 64) read through a 4-tile cache, a few ClassAt queries, and every
+// viewpoint sub-map (at most 16).
 //
 // Maps are copied between machines and disks; a damaged or hostile file must end in an
 // Error naming what is wrong, never a crash, a hang or undefined behaviour. A random file
@@ -7,7 +8,8 @@
 //   0: the whole file, as is;
 //   1: the header (4 bytes of length, then its bytes) and the tile section; the preamble
 //      and header CRC are made right, so parsing and index checks are explored;
-//   2: as 1, and every tile's CRC is made right too, so zstd frames and tile contents are.
+//   2: as 1, and every tile's and viewpoint's CRC is made right too, so zstd frames and
+//      their contents are.
 #include <zlib.h>
 
 #include <cstddef>
@@ -46,6 +48,11 @@ std::vector<std::uint8_t> Wrap(const std::uint8_t* data, std::size_t size, bool 
       for (TileEntry& tile : *parsed.mutable_tiles()) {
         if (tile.offset() <= tile_bytes && tile.compressed_bytes() <= tile_bytes - tile.offset()) {
           tile.set_crc32(Crc(tiles + tile.offset(), tile.compressed_bytes()));
+        }
+      }
+      for (Viewpoint& viewpoint : *parsed.mutable_viewpoints()) {
+        if (viewpoint.offset() <= tile_bytes && viewpoint.compressed_bytes() <= tile_bytes - viewpoint.offset()) {
+          viewpoint.set_crc32(Crc(tiles + viewpoint.offset(), viewpoint.compressed_bytes()));
         }
       }
       header = parsed.SerializeAsString();
@@ -91,6 +98,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (int k = 0; k < 16; ++k) {
     const Eigen::Vector2d p = g.origin + g.resolution_m * Eigen::Vector2d(k * 37 % (g.width + 1), k * 53 % (g.height + 1));
     (void)reader->ClassAt(p);
+  }
+  for (int i = 0; i < reader->viewpoint_count() && i < 16; ++i) {
+    auto cells = reader->ViewpointCells(i);
+    if (!cells.ok()) continue;
+    const Viewpoint& v = header.viewpoints(i);
+    if (cells->size() != static_cast<std::size_t>(v.width()) * static_cast<std::size_t>(v.height())) __builtin_trap();
+    for (const std::uint8_t cell : *cells) {
+      if (cell > 3) __builtin_trap();
+    }
   }
   return 0;
 }
