@@ -54,6 +54,17 @@ maps::ClassGrid RasterizeScan(const std::vector<Eigen::Vector2d>& points, const 
 
 }  // namespace
 
+MapBuilderOptions LaserLogBuilderOptions() {
+  MapBuilderOptions options;
+  options.local_map_keyframes = 10;
+  options.map_min_votes = 1;
+  options.refine_sweeps = 0;
+  options.estimate_odometry_scale = false;
+  options.match_sigma_floor_m = 0.02;
+  options.match_sigma_floor_rad = 0.005;
+  return options;
+}
+
 std::vector<Eigen::Vector2d> ScanPointsOf(const hal::carmen::LaserScan& scan, double min_range_m, double max_range_m) {
   std::vector<Eigen::Vector2d> points;
   points.reserve(scan.ranges.size());

@@ -15,6 +15,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+constexpr int kMinScaleSteps = 20;  // well-constrained steps before a scale estimate is used
+
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -208,7 +210,7 @@ void MapBuilder::UpdateScale(const Se2& odometry_step, const Se2& matched_step, 
   scale_numerator_ += along.dot(matched_step.translation()) * distance;
   scale_denominator_ += distance * distance;
   ++scale_steps_;
-  if (scale_steps_ < 20) return;  // a few before the estimate is trusted
+  if (scale_steps_ < kMinScaleSteps) return;  // a few before the estimate is trusted
   scale_ = std::clamp(scale_numerator_ / scale_denominator_, 1.0 - options_.max_scale_error,
                       1.0 + options_.max_scale_error);
   stats_.odometry_scale = scale_;
@@ -304,6 +306,13 @@ void MapBuilder::RefineSweep() {
     graph::BetweenFactor& factor = graph_.betweens[static_cast<std::size_t>(tracking_factor_[k])];
     factor.measurement = step;
     factor.information = information;
+  }
+  // Too few refined steps pin the scale down (open roads: posts and trees, no wall across
+  // the path): the forward tracking's estimate is biased short, so the nominal scale is
+  // the better guess.
+  if (options_.estimate_odometry_scale && scale_steps_ < kMinScaleSteps) {
+    scale_ = 1.0;
+    stats_.odometry_scale = 1.0;
   }
 }
 

@@ -65,15 +65,18 @@ at its optimized pose written as a prior map with viewpoint sub-maps.
   --keyframe-distance M (default 0.5) --keyframe-angle RAD (default 0.25)
   --loop-radius M       (default 4) --loop-min-path M (default 8) --loop-min-score S (0.55)
   --loop-candidates N   nearest earlier keyframes tried per keyframe (default 2)
-  --local-map-keyframes N  keyframes a new one is tracked against (default 40)
-  --refine-sweeps N     final sweeps matching each keyframe against both sides (default 2)
-  --map-min-votes N     keyframes that must see a local-map cell (default 2)
+  --local-map-keyframes N  keyframes a new one is tracked against (default 40; carmen 10)
+  --refine-sweeps N     final sweeps matching each keyframe against both sides (default 2;
+                        carmen 0)
+  --map-min-votes N     keyframes that must see a local-map cell (default 2; carmen 1)
+  --scale-estimate on|off  estimate the odometry scale (default on; carmen off)
   --odometry-sigma T,R,RM
                         the odometry factors' standard deviation: T of the distance, R of
                         the turn, RM rad per metre (default: the noise model for carmen,
                         0.01,0.01,0.001 for drives)
   --match-floor-m M --match-floor-rad R
-                        smallest standard deviation given a match (default 0.01, 0.002)
+                        smallest standard deviation given a match (default 0.01, 0.002;
+                        carmen 0.02, 0.005)
   --resolution M        carmen: mosaic cell size (default 0.05; drives use the grid's)
   --tile-cells N        cells a tile side (default 256)
   --viewpoint-spacing M a viewpoint sub-map every M metres of the drive (default 10; 0: none)
@@ -141,6 +144,10 @@ maps::Georeference ParseUtm(const std::string& text) {
 
 BuildArgs ParseBuild(int argc, char** argv) {
   BuildArgs a;
+  // The source's builder settings first, so that the flags override them.
+  for (int i = 0; i < argc; ++i) {
+    if (std::string_view(argv[i]) == "--carmen") a.builder = localization::mapping::LaserLogBuilderOptions();
+  }
   for (int i = 0; i < argc; ++i) {
     const std::string_view arg = argv[i];
     auto value = [&]() -> const char* {
@@ -175,7 +182,11 @@ BuildArgs ParseBuild(int argc, char** argv) {
     else if (arg == "--loop-candidates") a.builder.loop_candidates = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 0, 100));
     else if (arg == "--local-map-keyframes") a.builder.local_map_keyframes = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1000));
     else if (arg == "--refine-sweeps") a.builder.refine_sweeps = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 0, 10));
-    else if (arg == "--map-min-votes") a.builder.map_min_votes = static_cast<std::size_t>(maps::cli::ParseInteger(kTool, arg, value(), 1, 100));
+    else if (arg == "--scale-estimate") {
+      const std::string_view v = value();
+      if (v != "on" && v != "off") Fail(1, "--scale-estimate takes on or off");
+      a.builder.estimate_odometry_scale = v == "on";
+    } else if (arg == "--map-min-votes") a.builder.map_min_votes = static_cast<std::size_t>(maps::cli::ParseInteger(kTool, arg, value(), 1, 100));
     else if (arg == "--odometry-sigma") {
       const auto v = ParseList(arg, value(), 3);
       a.odometry_sigma = localization::mapping::OdometryNoiseModel{v[0], v[0], v[1], v[2], 0.0, 0};

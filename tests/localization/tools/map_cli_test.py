@@ -19,6 +19,10 @@ MAP, EVAL, SIM, SOURCE, WORK = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[5
 DATA = os.environ.get("FLAT2D_DATA") or sys.argv[4]
 SIM_ODOMETRY = os.path.join(SOURCE, "packaging", "config", "odometry", "flat2d_sim.textproto")
 QUICK = len(sys.argv) > 7 and sys.argv[7] == "quick"
+# The occluders map against the truth, measured 0.77 precision, 0.88 recall (1 cell) and
+# 0.108 m ATE (docs/benchmarks.md); with the truth's poses the same revolutions give 1.00
+# and 0.93, so the margin below is the builder's, not the grids'.
+PRECISION, RECALL, ATE_RMSE_M = 0.70, 0.80, 0.15
 
 
 def run(tool, *args):
