@@ -53,7 +53,8 @@ Result<DriveBuildResult> BuildFromDrive(const DriveBuildOptions& options) {
   if (!first.ok()) return first.error();
   if (first->unsupported) return MakeError(options.capture.string() + ": " + *first->unsupported);
   builder.Finish();
-  if (builder.keyframes().empty()) return MakeError(options.capture.string() + ": no revolution within the CAN log's time");
+  result.stats = builder.stats();
+  if (builder.keyframes().empty()) return result;  // nothing to map: no mosaic
 
   std::vector<maps::StampedPose2d> corrected;
   for (const maps::StampedPose2d& p : *odometry) {

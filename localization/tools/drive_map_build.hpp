@@ -41,10 +41,12 @@ struct DriveBuildResult {
   std::vector<evaluation::TimedPose> estimate;  // ... corrected
   std::vector<mapping::Keyframe> keyframes;
   mapping::MapBuilderStats stats;
-  std::optional<maps::ClassGrid> mosaic;
+  std::optional<maps::ClassGrid> mosaic;  // none when no revolution fell within the CAN log
   std::uint64_t revolutions = 0;
 };
 
+// An error when a file cannot be read or is invalid; no keyframes and no mosaic when no
+// complete revolution has odometry.
 Result<DriveBuildResult> BuildFromDrive(const DriveBuildOptions& options);
 
 }  // namespace flat2d::localization

@@ -15,6 +15,7 @@
 #include "hal/velodyne/calibration_yaml.hpp"
 #include "localization/tools/grid_run.hpp"
 #include "localization/tools/odometry_poses.hpp"
+#include "localization/tools/shipped_config.hpp"
 #include "maps/grid/class_grid_file.hpp"
 #include "maps/grid/grid_crop.hpp"
 #include "maps/grid/structure_grid_config.hpp"
@@ -83,16 +84,6 @@ struct Options {
 
 [[noreturn]] void Fail(int status, const std::string& message) { maps::cli::Fail(kTool, status, message); }
 
-std::string DefaultConfig() {
-  for (const char* candidate : {FLAT2D_INSTALLED_GRID_CONFIG, FLAT2D_SOURCE_GRID_CONFIG}) {
-    if (std::FILE* f = std::fopen(candidate, "r")) {
-      std::fclose(f);
-      return candidate;
-    }
-  }
-  return FLAT2D_SOURCE_GRID_CONFIG;
-}
-
 maps::StructureGridOptions::Method ParseMethod(std::string_view name) {
   if (name == "slope") return maps::StructureGridOptions::METHOD_SLOPE;
   if (name == "cartesian") return maps::StructureGridOptions::METHOD_CARTESIAN_POPCOUNT;
@@ -128,7 +119,7 @@ bool ApplyGridOption(std::string_view arg, const char* text, maps::StructureGrid
 
 Options ParseOptions(int argc, char** argv) {
   Options options;
-  options.config = DefaultConfig();
+  options.config = localization::ShippedGridConfig();
   std::vector<std::pair<std::string, const char*>> grid_options;  // applied after --config
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];

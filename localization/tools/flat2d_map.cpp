@@ -16,6 +16,7 @@
 #include "localization/evaluation/trajectory_file.hpp"
 #include "localization/mapping/carmen_map_build.hpp"
 #include "localization/tools/drive_map_build.hpp"
+#include "localization/tools/shipped_config.hpp"
 #include "maps/grid/class_grid_file.hpp"
 #include "maps/grid/grid_crop.hpp"
 #include "maps/grid/structure_grid_config.hpp"
@@ -252,23 +253,13 @@ BuiltMap BuildCarmen(const BuildArgs& a) {
   return out;
 }
 
-std::string DefaultGridConfig() {
-  for (const char* candidate : {FLAT2D_INSTALLED_GRID_CONFIG, FLAT2D_SOURCE_GRID_CONFIG}) {
-    if (std::FILE* f = std::fopen(candidate, "r")) {
-      std::fclose(f);
-      return candidate;
-    }
-  }
-  return FLAT2D_SOURCE_GRID_CONFIG;
-}
-
 BuiltMap BuildDrive(const BuildArgs& a) {
   localization::DriveBuildOptions options;
   options.capture = *a.pcap;
   options.can_log = *a.can;
   options.dbc = *a.dbc;
   options.odometry_config = *a.odometry;
-  auto grid = maps::LoadStructureGridOptions(a.config.value_or(DefaultGridConfig()));
+  auto grid = maps::LoadStructureGridOptions(a.config.value_or(localization::ShippedGridConfig()));
   if (!grid.ok()) Fail(2, grid.error().message);
   options.grid = *grid;
   options.builder = a.builder;
@@ -279,8 +270,8 @@ BuiltMap BuildDrive(const BuildArgs& a) {
     options.anchor = std::move(*anchor);
   }
   auto built = localization::BuildFromDrive(options);
-  if (!built.ok()) Fail(3, built.error().message);
-  if (!built->mosaic) Fail(3, "no revolution could be placed in the mosaic");
+  if (!built.ok()) Fail(2, built.error().message);
+  if (!built->mosaic) Fail(3, *a.pcap + ": no complete revolution within the CAN log's time: nothing to map");
   BuiltMap out;
   out.mosaic = std::move(*built->mosaic);
   out.estimate = std::move(built->estimate);

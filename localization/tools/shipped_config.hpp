@@ -1,0 +1,12 @@
+// Where the shipped configuration files are for the offline tools: the installed copy
+// (CMAKE_INSTALL_DATADIR/flat2d/config) when it exists, else the source tree's packaging/.
+#pragma once
+
+#include <string>
+
+namespace flat2d::localization {
+
+// The structure-grid options flat2d-grid and flat2d-map use without --config.
+std::string ShippedGridConfig();
+
+}  // namespace flat2d::localization
