@@ -77,8 +77,8 @@ std::vector<Se2> TwoLaps() {
 std::vector<Eigen::Vector2d> Scan(const std::vector<Segment>& world, const Se2& pose, std::mt19937& random) {
   std::normal_distribution<double> noise(0.0, 0.01);
   std::vector<Eigen::Vector2d> points;
-  for (int i = 0; i < 360; ++i) {
-    const double bearing = (i - 180) * std::numbers::pi / 180.0;
+  for (int i = 0; i < 180; ++i) {  // every 2 degrees all round
+    const double bearing = (2 * i - 180) * std::numbers::pi / 180.0;
     const Eigen::Vector2d direction(std::cos(pose.theta() + bearing), std::sin(pose.theta() + bearing));
     const double range = CastRay(world, pose.translation(), direction);
     if (range > 20.0) continue;
