@@ -27,7 +27,7 @@ constexpr std::string_view kTool = "flat2d-eval";
 constexpr const char* kUsage = R"(usage:
   flat2d-eval grid --truth A.yaml --grid B.yaml [--tolerance CELLS] [--observed-radius CELLS] [--json]
   flat2d-eval relations --trajectory EST.tum (--relations FILE | --reference REF.tum) [options] [--json]
-  flat2d-eval traj --trajectory EST.tum --reference REF.tum [--no-align] [--max-gap S] [--json]
+  flat2d-eval traj --truth T.tum --est E.tum [--align] [--max-gap S] [--json]
 
 grid: slammable cells of grid B against the occupied (slammable) cells of truth A, both
 map_server YAML + PGM files in one world frame (flat2d-sim's truth_map.yaml, flat2d-grid's
@@ -53,9 +53,11 @@ after at least --loop-min-path metres of travel).
   --loop-min-path M        default 10
   --max-gap S              the estimate's poses around a relation's time at most S apart (default 1)
 
-traj: the estimate sampled at the reference's times, rigidly aligned to it (2D Horn),
-position RMSE, mean, median and max (m) and heading RMSE (deg).
-  --no-align               compare in the frames as given
+traj: the estimate sampled at the truth's times, position RMSE, mean, median and max (m)
+and heading RMSE (deg), in the frames as given (a map georeferenced to the truth's frame).
+  --align                  after the best rigid 2D alignment (Horn), for an estimate in
+                           another frame (raw odometry, a map not anchored to the truth)
+  --trajectory, --reference  the same as --est, --truth
 )";
 
 [[noreturn]] void Fail(int status, const std::string& message) { maps::cli::Fail(kTool, status, message); }
@@ -175,7 +177,7 @@ int EvalRelations(int argc, char** argv) {
 
 int EvalTraj(int argc, char** argv) {
   std::string trajectory_path, reference_path;
-  bool align = true, json = false;
+  bool align = false, json = false;
   double max_gap = 1.0;
   for (int i = 0; i < argc; ++i) {
     const std::string_view arg = argv[i];
@@ -183,24 +185,26 @@ int EvalTraj(int argc, char** argv) {
       if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
       return argv[++i];
     };
-    if (arg == "--trajectory") trajectory_path = value();
-    else if (arg == "--reference") reference_path = value();
+    if (arg == "--est" || arg == "--trajectory") trajectory_path = value();
+    else if (arg == "--truth" || arg == "--reference") reference_path = value();
+    else if (arg == "--align") align = true;
     else if (arg == "--no-align") align = false;
     else if (arg == "--max-gap") max_gap = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--json") json = true;
     else Fail(1, "traj: unknown argument " + std::string(arg) + "\n" + kUsage);
   }
-  if (trajectory_path.empty() || reference_path.empty()) Fail(1, std::string("traj needs --trajectory and --reference\n") + kUsage);
+  if (trajectory_path.empty() || reference_path.empty()) Fail(1, std::string("traj needs --truth and --est\n") + kUsage);
   const auto e = localization::evaluation::EvaluateTrajectory(ReadTrajectoryOrFail(trajectory_path),
                                                               ReadTrajectoryOrFail(reference_path), align, max_gap);
-  if (e.poses == 0) Fail(2, "the trajectory covers none of the reference's times");
+  if (e.poses == 0) Fail(2, "the estimate covers none of the truth's times");
   if (json) {
     std::printf("{\"poses\":%zu,\"unmatched\":%zu,\"ate_rmse_m\":%.6f,\"ate_mean_m\":%.6f,\"ate_median_m\":%.6f,"
                 "\"ate_max_m\":%.6f,\"rotation_rmse_deg\":%.6f,\"aligned\":%s}\n",
                 e.poses, e.unmatched, e.rmse_m, e.mean_m, e.median_m, e.max_m, e.rotation_rmse_deg,
                 align ? "true" : "false");
   } else {
-    std::printf("poses: %zu compared, %zu outside the trajectory\n", e.poses, e.unmatched);
+    std::printf("poses: %zu compared, %zu outside the estimate; %s\n", e.poses, e.unmatched,
+                align ? "rigidly aligned" : "frames as given");
     std::printf("ATE: rmse %.4f m, mean %.4f m, median %.4f m, max %.4f m; heading rmse %.3f deg\n", e.rmse_m,
                 e.mean_m, e.median_m, e.max_m, e.rotation_rmse_deg);
   }

@@ -76,11 +76,16 @@ class DriveMap(unittest.TestCase):
 
     def test_trajectory_against_the_truth(self):
         self.assertEqual(self.build.returncode, 0, self.build.stderr)
-        result = run(EVAL, "traj", "--trajectory", os.path.join(WORK, "occluders_map.tum"),
-                     "--reference", os.path.join(self.drive, "truth.tum"), "--no-align", "--json")
+        result = run(EVAL, "traj", "--truth", os.path.join(self.drive, "truth.tum"),
+                     "--est", os.path.join(WORK, "occluders_map.tum"), "--json")
         self.assertEqual(result.returncode, 0, result.stderr)
         ate = json.loads(result.stdout)
+        self.assertFalse(ate["aligned"])
         self.assertGreater(ate["poses"], 1000)
+        aligned = json.loads(run(EVAL, "traj", "--truth", os.path.join(self.drive, "truth.tum"),
+                                 "--est", os.path.join(WORK, "occluders_map.tum"), "--align", "--json").stdout)
+        self.assertTrue(aligned["aligned"])
+        self.assertLessEqual(aligned["ate_rmse_m"], ate["ate_rmse_m"] + 1e-9)  # the best fit is no worse
         if not QUICK:
             self.assertLess(ate["ate_rmse_m"], ATE_RMSE_M, ate)
 
