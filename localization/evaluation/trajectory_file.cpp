@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "hal/trajectory/tum_file.hpp"
+#include "maps/grid/interpolated_poses.hpp"
 
 namespace flat2d::localization::evaluation {
 
@@ -13,9 +14,8 @@ Result<std::vector<TimedPose>> ReadTrajectory(const std::filesystem::path& path)
   std::vector<TimedPose> out;
   out.reserve(poses->size());
   for (const auto& p : *poses) {
-    const Eigen::Vector3d x_axis = p.world_T_body.linear().col(0);
-    out.push_back({static_cast<double>(p.time_ns) * 1e-9,
-                   Se2(p.world_T_body.translation().head<2>(), std::atan2(x_axis.y(), x_axis.x()))});
+    const maps::StampedPose2d flat = maps::Flatten(p.time_ns, p.world_T_body);
+    out.push_back({static_cast<double>(p.time_ns) * 1e-9, Se2(flat.position, flat.yaw)});
   }
   return out;
 }

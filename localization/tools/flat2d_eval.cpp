@@ -68,10 +68,7 @@ int EvalGrid(int argc, char** argv) {
   bool json = false;
   for (int i = 0; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     if (arg == "--help" || arg == "-h") {
       std::cout << kUsage;
       std::exit(0);
@@ -126,10 +123,7 @@ int EvalRelations(int argc, char** argv) {
   bool json = false;
   for (int i = 0; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     if (arg == "--trajectory") trajectory_path = value();
     else if (arg == "--relations") relations_path = value();
     else if (arg == "--reference") reference_path = value();
@@ -181,10 +175,7 @@ int EvalTraj(int argc, char** argv) {
   double max_gap = 1.0;
   for (int i = 0; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     if (arg == "--est" || arg == "--trajectory") trajectory_path = value();
     else if (arg == "--truth" || arg == "--reference") reference_path = value();
     else if (arg == "--align") align = true;

@@ -151,10 +151,7 @@ BuildArgs ParseBuild(int argc, char** argv) {
   }
   for (int i = 0; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     auto number = [&] { return maps::cli::ParseNumber(kTool, arg, value()); };
     if (arg == "--carmen") a.carmen = value();
     else if (arg == "--pcap") a.pcap = value();
@@ -381,10 +378,7 @@ int Render(int argc, char** argv) {
   std::optional<std::string> path, out, region_text;
   for (int i = 0; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) Fail(1, std::string(arg) + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     if (arg == "--out") out = value();
     else if (arg == "--region") region_text = value();
     else if (!arg.starts_with("-") && !path) path = argv[i];

@@ -13,6 +13,11 @@ void Fail(std::string_view tool, int status, const std::string& message) {
   std::exit(status);
 }
 
+const char* OptionValue(std::string_view tool, int argc, char** argv, int& i) {
+  if (i + 1 >= argc) Fail(tool, 1, std::string(argv[i]) + " needs a value");
+  return argv[++i];
+}
+
 double ParseNumber(std::string_view tool, std::string_view flag, const char* text) {
   char* end = nullptr;
   errno = 0;

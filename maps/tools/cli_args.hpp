@@ -11,6 +11,9 @@ namespace flat2d::maps::cli {
 // Prints "<tool>: <message>" to stderr and exits with `status`.
 [[noreturn]] void Fail(std::string_view tool, int status, const std::string& message);
 
+// The value after option argv[i] (advancing i), or Fail(1) saying the option needs one.
+const char* OptionValue(std::string_view tool, int argc, char** argv, int& i);
+
 // The value of option `flag`, or Fail(1) naming the flag and the text.
 double ParseNumber(std::string_view tool, std::string_view flag, const char* text);
 std::int64_t ParseInteger(std::string_view tool, std::string_view flag, const char* text,
