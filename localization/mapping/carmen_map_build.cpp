@@ -60,6 +60,7 @@ MapBuilderOptions LaserLogBuilderOptions() {
   options.map_min_votes = 1;
   options.refine_sweeps = 0;
   options.estimate_odometry_scale = false;
+  options.fuse_tracking = false;  // a laser log's odometry is the noise model's: the match is better
   options.match_sigma_floor_m = 0.02;
   options.match_sigma_floor_rad = 0.005;
   return options;

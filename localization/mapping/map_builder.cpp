@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "localization/graph/graph_optimizer.hpp"
@@ -24,12 +25,12 @@ double SecondsSince(Clock::time_point start) {
 MatcherLimits LimitsFor(const MapBuilderOptions& options) {
   MatcherLimits limits;
   limits.max_points = 4000;
-  const double side = 2.0 * (options.point_range_m + std::max(options.loop_window.linear, options.tracking_window.linear)) + 2.0;
+  const double widest = std::max({options.loop_window.linear, options.loop_max_window.linear,
+                                  options.tracking_window.linear, options.refine_window.linear});
+  const double side = 2.0 * (options.point_range_m + widest) + 2.0;
   const auto cells = static_cast<std::size_t>(std::ceil(side / options.match_resolution_m));
   limits.max_map_cells = cells * cells;
-  limits.max_window_cells =
-      static_cast<int>(std::ceil(std::max(options.loop_window.linear, options.tracking_window.linear) /
-                                 options.match_resolution_m)) + 2;
+  limits.max_window_cells = static_cast<int>(std::ceil(widest / options.match_resolution_m)) + 2;
   limits.max_headings = 1024;
   return limits;
 }
@@ -39,6 +40,29 @@ MatcherOptions MatchOptionsFor() {
   options.min_score = 0.0;  // judged here, per use
   options.min_points = 20;
   return options;
+}
+
+// The MAP pose from two estimates of it with information in their (nearly common) vehicle
+// frame: the prediction moved towards the match by the match's share of the information.
+Se2 Fuse(const Se2& prediction, const Eigen::Matrix3d& prediction_information, const Se2& match,
+         const Eigen::Matrix3d& match_information) {
+  const Eigen::Vector3d difference = graph::BetweenError(prediction, match, Se2());
+  const Eigen::Vector3d step =
+      (prediction_information + match_information).ldlt().solve(match_information * difference);
+  return prediction * Se2(step.head<2>(), step.z());
+}
+
+// The variance along the least certain direction of a 2 x 2 covariance.
+double LargestVariance(const Eigen::Matrix2d& c) {
+  const double mean = 0.5 * (c(0, 0) + c(1, 1));
+  const double half_difference = 0.5 * (c(0, 0) - c(1, 1));
+  return mean + std::sqrt(half_difference * half_difference + c(0, 1) * c(1, 0));
+}
+
+// How sure the graph is of a relative pose along one axis: three standard deviations,
+// within the bounds.
+double SearchHalfWidth(double variance, double at_least, double at_most) {
+  return std::clamp(3.0 * std::sqrt(std::max(variance, 0.0)), at_least, std::max(at_least, at_most));
 }
 
 }  // namespace
@@ -73,6 +97,7 @@ bool MapBuilder::AddScan(double time_s, const Se2& odometry, std::span<const Eig
     keyframes_.push_back(std::move(keyframe));
     graph_.AddNode(keyframes_.back().estimate, /*fixed=*/true);
     tracking_factor_.push_back(-1);
+    step_covariance_.push_back(Eigen::Matrix3d::Zero());
     ++stats_.keyframes;
     return true;
   }
@@ -86,6 +111,7 @@ bool MapBuilder::AddScan(double time_s, const Se2& odometry, std::span<const Eig
   const std::size_t k = keyframes_.size() - 1;
   odometry_factors_.push_back(graph_.betweens.size());
   graph_.betweens.push_back({k - 1, k, step, OdometryInformation(step, options_.odometry)});
+  step_covariance_.push_back(graph_.betweens.back().information.inverse());  // until tracking refines it
   ++stats_.keyframes;
 
   TrackNewest();
@@ -187,8 +213,19 @@ void MapBuilder::TrackNewest() {
   const Keyframe& previous = keyframes_[k - 1];
   const Se2 matched_step = previous.estimate.Inverse() * match.map_T_vehicle;
   const Eigen::Matrix3d information = MatchInformation(match);
-  keyframes_[k].estimate = match.map_T_vehicle;
-  graph_.nodes[k].estimate = match.map_T_vehicle;
+  const Eigen::Matrix3d& odometry_information = graph_.betweens[odometry_factors_.back()].information;
+  Eigen::Matrix3d running_information = information;  // what the running estimate takes of the match
+  if (options_.fuse_tracking) {
+    Eigen::Matrix3d covariance = information.inverse();
+    covariance(2, 2) += options_.fuse_heading_floor_rad * options_.fuse_heading_floor_rad;
+    running_information = covariance.inverse();
+  }
+  step_covariance_[k] = (odometry_information + running_information).inverse();
+  const Se2 estimate = options_.fuse_tracking
+                           ? Fuse(keyframes_[k].estimate, odometry_information, match.map_T_vehicle, running_information)
+                           : match.map_T_vehicle;
+  keyframes_[k].estimate = estimate;
+  graph_.nodes[k].estimate = estimate;
   tracking_factor_[k] = static_cast<std::ptrdiff_t>(graph_.betweens.size());
   graph_.betweens.push_back({k - 1, k, matched_step, information});
   UpdateScale(previous.odometry.Inverse() * keyframes_[k].odometry, matched_step, information);
@@ -225,39 +262,84 @@ void MapBuilder::RescaleOdometryFactors() {
   }
 }
 
-void MapBuilder::CloseLoops() {
+std::vector<MapBuilder::LoopCandidate> MapBuilder::NearbyKeyframes() const {
   const std::size_t k = keyframes_.size() - 1;
   const Keyframe& current = keyframes_[k];
-  // The nearest candidates, at least 2 submap widths apart so each tries another place.
-  std::vector<std::pair<double, std::size_t>> near;
-  for (std::size_t j = 0; j < k && current.path_m - keyframes_[j].path_m >= options_.loop_min_path_m; ++j) {
+  // Walking back along the chain of steps, the covariance of keyframe k relative to
+  // keyframe j grows by each step's covariance carried into k's frame (first order): how
+  // far the running estimate may have drifted between them (earlier loops ignored, so it
+  // errs wide).
+  std::vector<LoopCandidate> near;
+  Eigen::Matrix3d chain = Eigen::Matrix3d::Zero();
+  for (std::size_t j = k; j-- > 0;) {
+    const Se2 rest = keyframes_[j + 1].estimate.Inverse() * current.estimate;  // j + 1 to k
+    Eigen::Matrix3d carry = Eigen::Matrix3d::Identity();
+    const Eigen::Matrix2d r_t = rest.Rotation().transpose();
+    carry.topLeftCorner<2, 2>() = r_t;
+    carry.topRightCorner<2, 1>() = r_t * Eigen::Vector2d(-rest.translation().y(), rest.translation().x());
+    chain += carry * step_covariance_[j + 1] * carry.transpose();
+    if (current.path_m - keyframes_[j].path_m < options_.loop_min_path_m) continue;
+    const double spread = 3.0 * std::sqrt(std::max(LargestVariance(chain.topLeftCorner<2, 2>()), 0.0));
+    const double radius =
+        std::min(options_.loop_radius_m + spread, std::max(options_.loop_radius_m, options_.loop_max_radius_m));
     const double d = (keyframes_[j].estimate.translation() - current.estimate.translation()).norm();
-    if (d <= options_.loop_radius_m) near.emplace_back(d, j);
+    if (d <= radius) near.push_back({d, j, chain});
   }
-  std::sort(near.begin(), near.end());
-  std::vector<std::size_t> chosen;
-  for (const auto& [distance, j] : near) {
+  std::sort(near.begin(), near.end(),
+            [](const LoopCandidate& a, const LoopCandidate& b) { return a.distance_m < b.distance_m; });
+  return near;
+}
+
+void MapBuilder::CloseLoops() {
+  const std::vector<LoopCandidate> near = NearbyKeyframes();
+  // The nearest candidates, at least 2 submap widths apart so each tries another place.
+  std::vector<const LoopCandidate*> chosen;
+  for (const LoopCandidate& candidate : near) {
     if (static_cast<int>(chosen.size()) >= options_.loop_candidates) break;
-    const bool distinct = std::all_of(chosen.begin(), chosen.end(), [&](std::size_t c) {
-      return std::abs(static_cast<long>(c) - static_cast<long>(j)) > 2 * options_.loop_submap_keyframes;
+    const bool distinct = std::all_of(chosen.begin(), chosen.end(), [&](const LoopCandidate* c) {
+      return std::abs(static_cast<long>(c->keyframe) - static_cast<long>(candidate.keyframe)) >
+             2 * options_.loop_submap_keyframes;
     });
-    if (distinct) chosen.push_back(j);
+    if (distinct) chosen.push_back(&candidate);
   }
+  for (const LoopCandidate* candidate : chosen) TryLoop(candidate->keyframe, candidate->chain_covariance);
+}
+
+void MapBuilder::TryLoop(std::size_t j, const Eigen::Matrix3d& chain_covariance) {
+  const std::size_t k = keyframes_.size() - 1;
+  const Keyframe& current = keyframes_[k];
+  ++stats_.loop_candidates;
   const auto side = static_cast<std::size_t>(options_.loop_submap_keyframes);
-  for (std::size_t j : chosen) {
-    ++stats_.loop_candidates;
-    const std::size_t first = j > side ? j - side : 0;
-    std::size_t last = std::min(j + side, k - 1);
-    // The submap must not reach the keyframes the current one was just tracked against.
-    while (last > j && current.path_m - keyframes_[last].path_m < options_.loop_min_path_m) --last;
-    const MatchResult match = MatchAgainst(k, first, last, current.estimate, options_.loop_window);
-    if (!match.ok() || match.score < options_.loop_min_score) continue;
-    ++stats_.loop_accepted;
-    ++loops_since_optimization_;
-    graph_.mixture_betweens.push_back({j, k, keyframes_[j].estimate.Inverse() * match.map_T_vehicle,
-                                       graph::MakeNullHypothesisMixture(MatchInformation(match),
-                                                                        options_.loop_null_weight,
-                                                                        options_.loop_null_scale)});
+  const std::size_t first = j > side ? j - side : 0;
+  std::size_t last = std::min(j + side, k - 1);
+  // The submap must not reach the keyframes the current one was just tracked against.
+  while (last > j && current.path_m - keyframes_[last].path_m < options_.loop_min_path_m) --last;
+  const SearchWindow window{
+      SearchHalfWidth(LargestVariance(chain_covariance.topLeftCorner<2, 2>()),
+                      options_.loop_window.linear, options_.loop_max_window.linear),
+      SearchHalfWidth(chain_covariance(2, 2), options_.loop_window.angular, options_.loop_max_window.angular)};
+  const MatchResult match = MatchAgainst(k, first, last, current.estimate, window);
+  if (!match.ok() || match.score < options_.loop_min_score) return;
+  const Se2 measurement = keyframes_[j].estimate.Inverse() * match.map_T_vehicle;
+  const Eigen::Matrix3d information = MatchInformation(match);
+  const Eigen::Vector3d error = graph::BetweenError(keyframes_[j].estimate, current.estimate, measurement);
+  const Eigen::Matrix3d innovation = information.inverse() + chain_covariance;
+  if (error.dot(innovation.ldlt().solve(error)) > options_.loop_gate_chi2) {
+    ++stats_.loop_gated;
+    return;
+  }
+  ++stats_.loop_accepted;
+  ++loops_since_optimization_;
+  graph_.mixture_betweens.push_back({j, k, measurement,
+                                     graph::MakeNullHypothesisMixture(information, options_.loop_null_weight,
+                                                                      options_.loop_null_scale)});
+  // Farther from the estimate than the match's own spread: the null hypothesis would win
+  // before the graph had a chance to move. The graph allows it (the gate above), so it is
+  // closed at once, as a plain Gaussian first.
+  if (graph::SelectMixtureComponent(graph_.mixture_betweens.back().mixture, error).component != 0) {
+    drift_loops_.push_back(graph_.mixture_betweens.size() - 1);
+    ++stats_.loop_drift_closed;
+    loops_since_optimization_ = std::max(loops_since_optimization_, options_.optimize_every);
   }
 }
 
@@ -265,6 +347,16 @@ void MapBuilder::OptimizeGraph() {
   const auto start = Clock::now();
   graph::OptimizerOptions optimizer;
   optimizer.max_iterations = 30;
+  if (!drift_loops_.empty()) {
+    graph::PoseGraph held = graph_;
+    for (std::size_t i : drift_loops_) {
+      const graph::MaxMixtureBetweenFactor& loop = graph_.mixture_betweens[i];
+      held.betweens.push_back({loop.from, loop.to, loop.measurement, loop.mixture.components[0].information});
+    }
+    graph::Optimize(held, optimizer);
+    for (std::size_t i = 0; i < graph_.nodes.size(); ++i) graph_.nodes[i].estimate = held.nodes[i].estimate;
+    drift_loops_.clear();
+  }
   graph::Optimize(graph_, optimizer);
   for (std::size_t i = 0; i < keyframes_.size(); ++i) keyframes_[i].estimate = graph_.nodes[i].estimate;
   ++stats_.optimizations;

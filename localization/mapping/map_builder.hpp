@@ -10,13 +10,18 @@
 // local_map_keyframes keyframes around the prediction (tracking window) and, when the match
 // is accepted, add a between factor with the match's covariance and take its pose as the
 // estimate (local maps keep only cells that map_min_votes keyframes saw, so traffic in the
-// previous keyframes is not matched); (4) look for loop closures: the nearest earlier keyframes within loop_radius_m
-// whose path distance is at least loop_min_path_m, each verified by matching against a
-// submap of that keyframe and its neighbours in a wide window, accepted matches becoming
-// max-mixture factors against a null hypothesis (Olson & Agarwal 2012), so a false loop the
-// rest of the graph disagrees with switches itself off; (5) optimize the whole graph
-// (Levenberg-Marquardt) once optimize_every new loop closures have been added, and in
-// Finish. Between keyframes, poses follow odometry (CorrectedPose).
+// previous keyframes is not matched); the running estimate fuses match and odometry
+// (fuse_tracking); (4) look for loop closures: the nearest earlier keyframes whose path
+// distance is at least loop_min_path_m, within loop_radius_m plus three standard deviations
+// of the drift the chain of steps between them allows, each verified by matching against a
+// submap of that keyframe and its neighbours in a window as wide as that drift, and gated:
+// a match that disagrees with the graph beyond loop_gate_chi2 is refused. Accepted matches
+// become max-mixture factors against a null hypothesis (Olson & Agarwal 2012), so a false
+// loop the rest of the graph disagrees with switches itself off. A loop that closes a drift
+// of metres would lose to its null hypothesis before the graph could move, so it is solved
+// once as a plain Gaussian first (OptimizeGraph); (5) optimize the whole graph
+// (Levenberg-Marquardt) once optimize_every new loop closures have been added, at once for
+// a drift-closing loop, and in Finish. Between keyframes, poses follow odometry (CorrectedPose).
 //
 // Refinement: a keyframe tracked against the keyframes before it sees the far side of
 // poles, trees and door frames that they saw from the near side, which biases the match
@@ -65,11 +70,28 @@ struct MapBuilderOptions {
   int loop_candidates = 2;         // nearest candidates tried per keyframe
   int loop_submap_keyframes = 5;   // neighbours on each side in a loop's submap
   SearchWindow loop_window{2.0, 0.4};
+  // Far from the last loop the estimate may have drifted metres: candidates are looked for
+  // within loop_radius_m plus three standard deviations of the graph's uncertainty between
+  // the two keyframes, and matched in a window of three standard deviations, up to these.
+  double loop_max_radius_m = 10.0;
+  SearchWindow loop_max_window{6.0, 0.4};
+  // A match is a loop closure only if it agrees with the graph: the chi-square of its
+  // difference from the estimate, over the match's and the graph's covariance, below this
+  // (3 degrees of freedom, 99 %).
+  double loop_gate_chi2 = 11.34;
   double loop_min_score = 0.55;
   double loop_null_weight = 1e-3;  // max-mixture: weight of the null hypothesis ...
   double loop_null_scale = 1e-6;   // ... and its information relative to the match
   double match_sigma_floor_m = 0.01;
   double match_sigma_floor_rad = 0.002;
+  // The running estimate of a new keyframe (the next prediction, the local maps, where
+  // loops are looked for) weighs its tracking match against the odometry by their
+  // information (the one-node MAP) instead of taking the match, with the match's heading
+  // trusted to no better than fuse_heading_floor_rad: along roads lined with trees and
+  // posts, matches turn the estimate by a few hundredths of a degree a keyframe, one way,
+  // which a gyro does not. The graph's factors are unchanged; only the estimate is.
+  bool fuse_tracking = true;
+  double fuse_heading_floor_rad = 0.05;
   int optimize_every = 5;          // loop closures between optimizations
   // Refinement in Finish: each keyframe matched again against the refine_keyframes before
   // and after it, so structure seen from both sides is in its map (see the header).
@@ -97,6 +119,8 @@ struct MapBuilderStats {
   std::uint64_t tracking_rejected = 0;
   std::uint64_t loop_candidates = 0;
   std::uint64_t loop_accepted = 0;   // matched: became max-mixture factors
+  std::uint64_t loop_gated = 0;      // matched, but disagreeing with the graph (loop_gate_chi2)
+  std::uint64_t loop_drift_closed = 0;  // accepted with an error the match alone would reject (see OptimizeGraph)
   std::uint64_t loop_switched_off = 0;  // ... whose null hypothesis won at the solution (Finish)
   std::uint64_t refined = 0;  // keyframes whose tracking factor the last refinement sweep replaced
   std::uint64_t optimizations = 0;
@@ -134,7 +158,15 @@ class MapBuilder {
                           std::size_t min_votes, MatchGrid& map) const;
   Eigen::Matrix3d MatchInformation(const MatchResult& match) const;
   void TrackNewest();
+  struct LoopCandidate {
+    double distance_m = 0.0;
+    std::size_t keyframe = 0;
+    Eigen::Matrix3d chain_covariance;  // the newest keyframe relative to this one, in its frame
+  };
+  // Earlier keyframes the newest may be at, nearest first (see the header).
+  std::vector<LoopCandidate> NearbyKeyframes() const;
   void CloseLoops();
+  void TryLoop(std::size_t j, const Eigen::Matrix3d& chain_covariance);
   void OptimizeGraph();
   Se2 ScaledStep(const Se2& step) const;
   void UpdateScale(const Se2& odometry_step, const Se2& matched_step, const Eigen::Matrix3d& information);
@@ -152,6 +184,12 @@ class MapBuilder {
   int loops_since_optimization_ = 0;
   std::vector<std::size_t> odometry_factors_;  // indices into graph_.betweens
   std::vector<std::ptrdiff_t> tracking_factor_;  // per keyframe, into graph_.betweens; -1: none
+  // Per keyframe, the covariance of the step into it as the running estimate took it
+  // (odometry, and the match as fused): what loop search and gating allow for drift.
+  std::vector<Eigen::Matrix3d> step_covariance_;
+  // Loops (into graph_.mixture_betweens) that close a drift: held as plain Gaussians in the
+  // next optimization, so the graph moves into their basin before the mixture judges them.
+  std::vector<std::size_t> drift_loops_;
   double scale_ = 1.0;
   double scale_numerator_ = 0.0;
   double scale_denominator_ = 0.0;

@@ -336,12 +336,13 @@ int Build(int argc, char** argv) {
   if (a.json) {
     std::printf("{\"map\":%s,\"scans\":%llu,\"keyframes\":%llu,\"tracking_accepted\":%llu,\"tracking_rejected\":%llu,"
                 "\"loop_candidates\":%llu,\"loop_closures\":%llu,\"loop_closures_switched_off\":%llu,"
-                "\"optimizations\":%llu,\"optimize_seconds\":%.3f,\"match_seconds\":%.3f,\"viewpoints\":%zu,"
+                "\"loop_closures_gated\":%llu,\"loop_closures_drift\":%llu,\"optimizations\":%llu,\"optimize_seconds\":%.3f,\"match_seconds\":%.3f,\"viewpoints\":%zu,"
                 "\"odometry_scale\":%.6f}\n",
                 maps::SummaryJson(summary).c_str(), static_cast<unsigned long long>(st.scans),
                 static_cast<unsigned long long>(st.keyframes), static_cast<unsigned long long>(st.tracking_accepted),
                 static_cast<unsigned long long>(st.tracking_rejected), static_cast<unsigned long long>(st.loop_candidates),
                 static_cast<unsigned long long>(st.loop_accepted), static_cast<unsigned long long>(st.loop_switched_off),
+                static_cast<unsigned long long>(st.loop_gated), static_cast<unsigned long long>(st.loop_drift_closed),
                 static_cast<unsigned long long>(st.optimizations), st.optimize_seconds, st.match_seconds,
                 viewpoints.size(), st.odometry_scale);
   } else {

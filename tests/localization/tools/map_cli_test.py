@@ -52,6 +52,7 @@ class DriveMap(unittest.TestCase):
         self.assertEqual(self.build.returncode, 0, self.build.stderr)
         summary = json.loads(self.build.stdout)
         for key in ("map", "scans", "keyframes", "tracking_accepted", "loop_closures", "loop_closures_switched_off",
+                    "loop_closures_gated", "loop_closures_drift",
                     "viewpoints", "odometry_scale"):
             self.assertIn(key, summary)
         self.assertGreater(summary["keyframes"], 40 if QUICK else 150)  # 101 m, a keyframe per 0.5 m or more
