@@ -347,14 +347,14 @@ void MapBuilder::OptimizeGraph() {
   const auto start = Clock::now();
   graph::OptimizerOptions optimizer;
   optimizer.max_iterations = 30;
-  if (!drift_loops_.empty()) {
-    graph::PoseGraph held = graph_;
+  if (!drift_loops_.empty()) {  // held as Gaussians for one solve, then taken out again
+    const std::size_t betweens = graph_.betweens.size();
     for (std::size_t i : drift_loops_) {
       const graph::MaxMixtureBetweenFactor& loop = graph_.mixture_betweens[i];
-      held.betweens.push_back({loop.from, loop.to, loop.measurement, loop.mixture.components[0].information});
+      graph_.betweens.push_back({loop.from, loop.to, loop.measurement, loop.mixture.components[0].information});
     }
-    graph::Optimize(held, optimizer);
-    for (std::size_t i = 0; i < graph_.nodes.size(); ++i) graph_.nodes[i].estimate = held.nodes[i].estimate;
+    graph::Optimize(graph_, optimizer);
+    graph_.betweens.resize(betweens);
     drift_loops_.clear();
   }
   graph::Optimize(graph_, optimizer);

@@ -88,6 +88,29 @@ std::vector<Eigen::Vector2d> Scan(const std::vector<Segment>& world, const Se2& 
   return points;
 }
 
+// The builder fed a scan of `world` at every truth pose with its odometry pose, finished;
+// the truth, the odometry and the builder's corrected poses, a pose every 0.1 s.
+struct Drive {
+  std::vector<evaluation::TimedPose> reference, drifted, estimate;
+};
+
+Drive DriveThrough(MapBuilder& builder, const std::vector<Segment>& world, const std::vector<Se2>& truth,
+                   const std::vector<Se2>& odometry, unsigned seed) {
+  std::mt19937 random(seed);
+  Drive drive;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const double t = 0.1 * static_cast<double>(i);
+    builder.AddScan(t, odometry[i], Scan(world, truth[i], random));
+    drive.reference.push_back({t, truth[i]});
+    drive.drifted.push_back({t, odometry[i]});
+  }
+  builder.Finish();
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    drive.estimate.push_back({drive.reference[i].time_s, builder.CorrectedPose(drive.reference[i].time_s, odometry[i])});
+  }
+  return drive;
+}
+
 TEST(MapBuilder, ClosesTheLoopAndRemovesOdometryDrift) {
   const auto world = CorridorLoop();
   const auto truth = TwoLaps();
@@ -99,17 +122,7 @@ TEST(MapBuilder, ClosesTheLoopAndRemovesOdometryDrift) {
   options.odometry = noise;
   MapBuilder builder(options);
   builder.SetAnchor(truth.front());
-  std::mt19937 random(11);
-  std::vector<evaluation::TimedPose> reference, drifted;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    const double t = 0.1 * static_cast<double>(i);
-    builder.AddScan(t, odometry[i], Scan(world, truth[i], random));
-    reference.push_back({t, truth[i]});
-    drifted.push_back({t, odometry[i]});
-  }
-  builder.Finish();
-  std::vector<evaluation::TimedPose> estimate;
-  for (std::size_t i = 0; i < truth.size(); ++i) estimate.push_back({reference[i].time_s, builder.CorrectedPose(reference[i].time_s, odometry[i])});
+  const auto [reference, drifted, estimate] = DriveThrough(builder, world, truth, odometry, 11);
 
   const MapBuilderStats& stats = builder.stats();
   EXPECT_GT(stats.keyframes, 200u);
@@ -208,16 +221,7 @@ TEST(MapBuilder, ClosesALapWhoseDriftIsBeyondTheLoopRadius) {
   options.keyframe_distance_m = 1.0;
   MapBuilder builder(options);
   builder.SetAnchor(truth.front());
-  std::mt19937 random(13);
-  std::vector<evaluation::TimedPose> reference, drifted, estimate;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    const double t = 0.1 * static_cast<double>(i);
-    builder.AddScan(t, odometry[i], Scan(world, truth[i], random));
-    reference.push_back({t, truth[i]});
-    drifted.push_back({t, odometry[i]});
-  }
-  builder.Finish();
-  for (std::size_t i = 0; i < truth.size(); ++i) estimate.push_back({reference[i].time_s, builder.CorrectedPose(reference[i].time_s, odometry[i])});
+  const auto [reference, drifted, estimate] = DriveThrough(builder, world, truth, odometry, 13);
 
   // Back at the start the odometry is metres from it: farther than loop_radius_m, so a
   // fixed search radius would not even try the lap's closure.
