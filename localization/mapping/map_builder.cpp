@@ -16,7 +16,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr int kMinScaleSteps = 20;  // well-constrained steps before a scale estimate is used
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -68,7 +67,13 @@ double SearchHalfWidth(double variance, double at_least, double at_most) {
 }  // namespace
 
 MapBuilder::MapBuilder(const MapBuilderOptions& options)
-    : options_(options), matcher_(LimitsFor(options), MatchOptionsFor()), scan_(LimitsFor(options).max_points) {}
+    : options_(options),
+      matcher_(LimitsFor(options), MatchOptionsFor()),
+      scan_(LimitsFor(options).max_points),
+      scale_(options.odometry_scale),
+      scale_estimate_(options.scale_max_sigma_m, options.max_scale_error) {
+  stats_.odometry_scale = scale_;
+}
 
 std::vector<Eigen::Vector2d> MapBuilder::PrepareScan(std::span<const Eigen::Vector2d> points) {
   scan_.Clear();
@@ -231,37 +236,6 @@ void MapBuilder::TrackNewest() {
   UpdateScale(previous.odometry.Inverse() * keyframes_[k].odometry, matched_step, information);
 }
 
-Se2 MapBuilder::ScaledStep(const Se2& step) const { return Se2(scale_ * step.translation(), step.theta()); }
-
-void MapBuilder::UpdateScale(const Se2& odometry_step, const Se2& matched_step, const Eigen::Matrix3d& information) {
-  if (!options_.estimate_odometry_scale) return;
-  const double distance = odometry_step.translation().norm();
-  if (distance < 0.1) return;  // turning on the spot says nothing of the scale
-  const Eigen::Vector2d along = odometry_step.translation() / distance;
-  // The information along the direction of travel (the match's is in the vehicle frame,
-  // the step's in the previous keyframe's; they differ by the step's turn, small).
-  // Only steps the scene pins down along the path count: in a corridor the match returns
-  // the prediction, which would pull the estimate towards itself.
-  const double along_information = along.dot(information.topLeftCorner<2, 2>() * along);
-  if (along_information < 1.0 / (options_.scale_max_sigma_m * options_.scale_max_sigma_m)) return;
-  scale_numerator_ += along.dot(matched_step.translation()) * distance;
-  scale_denominator_ += distance * distance;
-  ++scale_steps_;
-  if (scale_steps_ < kMinScaleSteps) return;  // a few before the estimate is trusted
-  scale_ = std::clamp(scale_numerator_ / scale_denominator_, 1.0 - options_.max_scale_error,
-                      1.0 + options_.max_scale_error);
-  stats_.odometry_scale = scale_;
-}
-
-void MapBuilder::RescaleOdometryFactors() {
-  for (std::size_t i = 0; i < odometry_factors_.size(); ++i) {
-    const Se2 step = ScaledStep(keyframes_[i].odometry.Inverse() * keyframes_[i + 1].odometry);
-    graph::BetweenFactor& factor = graph_.betweens[odometry_factors_[i]];
-    factor.measurement = step;
-    factor.information = OdometryInformation(step, options_.odometry);
-  }
-}
-
 std::vector<MapBuilder::LoopCandidate> MapBuilder::NearbyKeyframes() const {
   const std::size_t k = keyframes_.size() - 1;
   const Keyframe& current = keyframes_[k];
@@ -381,9 +355,9 @@ void MapBuilder::RefineSweep() {
   }
   // Two neighbours refined against (nearly) the same map: their relative pose is what the
   // map says, whatever error the map shares with both. The odometry scale is estimated
-  // afresh from these steps, free of the forward tracking's bias.
-  scale_numerator_ = scale_denominator_ = 0.0;
-  scale_steps_ = 0;
+  // afresh from these steps, free of the forward tracking's partial views (but see the
+  // header: a map built from the estimates keeps their scale).
+  scale_estimate_.Reset();
   for (std::size_t k = 2; k < n; ++k) {
     if (!refined[k] || !refined[k - 1]) continue;
     ++stats_.refined;
@@ -402,19 +376,19 @@ void MapBuilder::RefineSweep() {
   // Too few refined steps pin the scale down (open roads: posts and trees, no wall across
   // the path): the forward tracking's estimate is biased short, so the nominal scale is
   // the better guess.
-  if (options_.estimate_odometry_scale && scale_steps_ < kMinScaleSteps) {
-    scale_ = 1.0;
-    stats_.odometry_scale = 1.0;
+  if (options_.estimate_odometry_scale && !scale_estimate_.ready()) {
+    scale_ = options_.odometry_scale;
+    stats_.odometry_scale = scale_;
   }
 }
 
 void MapBuilder::Finish() {
-  if (options_.estimate_odometry_scale) RescaleOdometryFactors();
+  RescaleOdometryFactors();
   if (keyframes_.size() > 1) OptimizeGraph();
   stats_.refined = 0;
   for (int sweep = 0; sweep < options_.refine_sweeps && keyframes_.size() > 2; ++sweep) {
     RefineSweep();
-    if (options_.estimate_odometry_scale) RescaleOdometryFactors();
+    RescaleOdometryFactors();
     OptimizeGraph();
   }
   stats_.loop_switched_off = 0;
@@ -422,6 +396,13 @@ void MapBuilder::Finish() {
     const Eigen::Vector3d error = graph::BetweenError(graph_.nodes[factor.from].estimate,
                                                       graph_.nodes[factor.to].estimate, factor.measurement);
     if (graph::SelectMixtureComponent(factor.mixture, error).component != 0) ++stats_.loop_switched_off;
+  }
+}
+
+void MapBuilder::TransformEstimate(const Se2& world_T_map) {
+  for (std::size_t k = 0; k < keyframes_.size(); ++k) {
+    keyframes_[k].estimate = world_T_map * keyframes_[k].estimate;
+    graph_.nodes[k].estimate = keyframes_[k].estimate;
   }
 }
 

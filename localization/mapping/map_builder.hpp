@@ -37,7 +37,10 @@
 // travel (standard deviation there at most scale_max_sigma_m: a wall across the path, not a
 // corridor, where the match returns the prediction): the least-squares ratio of matched to
 // odometry distance scales the odometry of the following keyframes, and Finish rescales
-// every odometry factor with the final estimate before the last optimization.
+// every odometry factor with the final estimate before the last optimization. The
+// estimate inherits the matches' bias: a local map built from the estimates is
+// self-consistent at any uniform scale, so refinement cannot correct it. A known wheel
+// calibration can be given instead (odometry_scale, estimate_odometry_scale off).
 #pragma once
 
 #include <cstdint>
@@ -48,6 +51,7 @@
 
 #include "localization/graph/pose_graph.hpp"
 #include "localization/mapping/odometry_noise.hpp"
+#include "localization/mapping/odometry_scale.hpp"
 #include "localization/matching/correlative_matcher.hpp"
 #include "localization/odometry/se2.hpp"
 
@@ -99,6 +103,10 @@ struct MapBuilderOptions {
   int refine_keyframes = 20;
   SearchWindow refine_window{0.15, 0.03};
   bool estimate_odometry_scale = true;
+  // The odometry's scale before any estimate (a wheel calibration): the scale used
+  // throughout when estimate_odometry_scale is off, and the fallback when too few steps
+  // pin it down.
+  double odometry_scale = 1.0;
   double max_scale_error = 0.05;   // the estimate is kept within 1 +- this
   double scale_max_sigma_m = 0.03;  // steps whose match is less sure along the path are not used
   OdometryNoiseModel odometry;     // the odometry factors' uncertainty model
@@ -139,6 +147,9 @@ class MapBuilder {
   bool AddScan(double time_s, const Se2& odometry, std::span<const Eigen::Vector2d> points);
   // The final optimization and loop statistics.
   void Finish();
+  // Moves the whole estimate by world_T_map, e.g. the rigid motion that best fits the
+  // keyframes to a georeferenced track (GNSS).
+  void TransformEstimate(const Se2& world_T_map);
 
   // world_T_vehicle for a vehicle at odometry pose `odometry` at `time_s`: the odometry
   // corrected by the keyframes' estimates around that time (interpolated between them).
@@ -168,9 +179,11 @@ class MapBuilder {
   void CloseLoops();
   void TryLoop(std::size_t j, const Eigen::Matrix3d& chain_covariance);
   void OptimizeGraph();
+  // Odometry scale (map_builder_scale.cpp).
   Se2 ScaledStep(const Se2& step) const;
   void UpdateScale(const Se2& odometry_step, const Se2& matched_step, const Eigen::Matrix3d& information);
   void RescaleOdometryFactors();
+
   void RefineSweep();
 
   MapBuilderOptions options_;
@@ -191,9 +204,7 @@ class MapBuilder {
   // next optimization, so the graph moves into their basin before the mixture judges them.
   std::vector<std::size_t> drift_loops_;
   double scale_ = 1.0;
-  double scale_numerator_ = 0.0;
-  double scale_denominator_ = 0.0;
-  int scale_steps_ = 0;
+  OdometryScaleEstimate scale_estimate_;
 };
 
 }  // namespace flat2d::localization::mapping

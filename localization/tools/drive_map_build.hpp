@@ -31,8 +31,9 @@ struct DriveBuildOptions {
   hal::velodyne::VelodyneStreamOptions stream;
   mapping::MapBuilderOptions builder;
   maps::AccumulationOptions accumulation;
-  // Where the first keyframe is in the map frame, looked up at its time (e.g. a GNSS fix,
-  // or the simulator's truth); empty: the odometry frame is the map frame.
+  // A track in the map frame (e.g. GNSS fixes, or the simulator's truth): the first
+  // keyframe starts at its pose, and the optimized map is moved by the rigid motion that
+  // best fits the keyframes to it. Empty: the odometry frame is the map frame.
   std::vector<evaluation::TimedPose> anchor;
 };
 

@@ -51,7 +51,8 @@ at its optimized pose written as a prior map with viewpoint sub-maps.
   --pcap CAPTURE --can LOG --dbc DBC --odometry CONFIG
                         a Velodyne drive: structure grids per revolution, CAN odometry
   --config FILE         drive: StructureGridOptions (default: the shipped structure_grid.textproto)
-  --anchor FILE.tum     drive: the first keyframe's map-frame pose, looked up at its time
+  --anchor FILE.tum     drive: a track in the map frame (GNSS, truth): the first keyframe
+                        starts at its pose, the optimized map is fitted to it rigidly
                         (GNSS, the simulator's truth.tum); default: the odometry frame
   --out MAP             the prior map file
   --png FILE            preview: the map, the optimized trajectory (blue), viewpoints (green)
@@ -71,6 +72,8 @@ at its optimized pose written as a prior map with viewpoint sub-maps.
                         carmen 0)
   --map-min-votes N     keyframes that must see a local-map cell (default 2; carmen 1)
   --scale-estimate on|off  estimate the odometry scale (default on; carmen off)
+  --odometry-scale S       the odometry's known scale (a wheel calibration): used as it
+                           is with --scale-estimate off, else where too few steps pin it down
   --odometry-sigma T,R,RM
                         the odometry factors' standard deviation: T of the distance, R of
                         the turn, RM rad per metre (default: the noise model for carmen,
@@ -184,7 +187,8 @@ BuildArgs ParseBuild(int argc, char** argv) {
       const std::string_view v = value();
       if (v != "on" && v != "off") Fail(1, "--scale-estimate takes on or off");
       a.builder.estimate_odometry_scale = v == "on";
-    } else if (arg == "--map-min-votes") a.builder.map_min_votes = static_cast<std::size_t>(maps::cli::ParseInteger(kTool, arg, value(), 1, 100));
+    } else if (arg == "--odometry-scale") a.builder.odometry_scale = number();
+    else if (arg == "--map-min-votes") a.builder.map_min_votes = static_cast<std::size_t>(maps::cli::ParseInteger(kTool, arg, value(), 1, 100));
     else if (arg == "--odometry-sigma") {
       const auto v = ParseList(arg, value(), 3);
       a.odometry_sigma = localization::mapping::OdometryNoiseModel{v[0], v[0], v[1], v[2], 0.0, 0};
@@ -214,6 +218,7 @@ BuildArgs ParseBuild(int argc, char** argv) {
       !(a.builder.keyframe_distance_m >= 0.0)) {
     Fail(1, "--resolution and --viewpoint-range must be positive, --viewpoint-spacing and --keyframe-distance >= 0");
   }
+  if (!(a.builder.odometry_scale > 0.5 && a.builder.odometry_scale < 2.0)) Fail(1, "--odometry-scale must be within (0.5, 2)");
   a.builder.odometry = a.odometry_sigma.value_or(a.carmen ? a.noise : kDriveOdometrySigma);
   return a;
 }

@@ -243,6 +243,44 @@ TEST(MapBuilder, ClosesALapWhoseDriftIsBeyondTheLoopRadius) {
   EXPECT_LT(error.max_m, 0.6);
 }
 
+// Wheel odometry whose distances are `scale` times the truth's (a wheel-radius error).
+std::vector<Se2> ScaledOdometry(const std::vector<Se2>& truth, double scale) {
+  std::vector<Se2> odometry{truth.front()};
+  for (std::size_t i = 1; i < truth.size(); ++i) {
+    const Se2 step = truth[i - 1].Inverse() * truth[i];
+    odometry.push_back(odometry.back() * Se2(scale * step.translation(), step.theta()));
+  }
+  return odometry;
+}
+
+// Odometry 0.6 % long (a wheel-radius error) and the scale estimate off: the map is as long
+// as the odometry says unless the builder is given the calibrated scale.
+TEST(MapBuilder, TakesACalibratedOdometryScale) {
+  const auto world = RingRoad();
+  const auto truth = LapAndOverlap();
+  const double wheel_scale = 1.006;
+  const auto odometry = ScaledOdometry(truth, wheel_scale);
+  const auto build = [&](double scale) {
+    MapBuilderOptions options;
+    options.odometry = {0.01, 0.01, 0.01, 0.005, 0.0, 1};
+    options.refine_sweeps = 0;
+    options.keyframe_distance_m = 1.0;
+    options.estimate_odometry_scale = false;
+    options.odometry_scale = scale;
+    MapBuilder builder(options);
+    builder.SetAnchor(truth.front());
+    const auto [reference, drifted, estimate] = DriveThrough(builder, world, truth, odometry, 17);
+    EXPECT_EQ(builder.stats().odometry_scale, scale);
+    return evaluation::EvaluateTrajectory(estimate, reference, /*align=*/false);
+  };
+  const auto nominal = build(1.0);
+  const auto calibrated = build(1.0 / wheel_scale);
+  std::printf("ATE rmse with the nominal scale %.3f m, with the calibrated scale %.3f m\n", nominal.rmse_m,
+              calibrated.rmse_m);
+  EXPECT_LT(calibrated.rmse_m, 0.1);
+  EXPECT_GT(nominal.rmse_m, 2.0 * calibrated.rmse_m);
+}
+
 TEST(MapBuilder, KeepsKeyframesByDistanceAndTurn) {
   MapBuilderOptions options;
   options.keyframe_distance_m = 1.0;

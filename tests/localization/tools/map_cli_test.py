@@ -120,6 +120,10 @@ class DriveMap(unittest.TestCase):
         self.assertIn("nonexistent.dbc", result.stderr)
         self.assertEqual(run(MAP, "frobnicate").returncode, 1)
         self.assertEqual(run(MAP, "build", "--carmen", "a", "--out", "b", "--keyframe-distance", "x").returncode, 1)
+        for scale in ("x", "0", "-1", "3"):
+            result = run(MAP, "build", "--carmen", "a", "--out", "b", "--odometry-scale", scale)
+            self.assertEqual(result.returncode, 1, scale)
+            self.assertIn("--odometry-scale", result.stderr)
         damaged = os.path.join(WORK, "damaged.f2m")
         with open(damaged, "wb") as f:
             f.write(b"FLAT2DMP" + b"\x01\x00\x00\x00" + b"\xff\xff\x00\x00" + b"\x00" * 8)
