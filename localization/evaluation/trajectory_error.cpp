@@ -6,6 +6,19 @@
 
 namespace flat2d::localization::evaluation {
 
+namespace {
+
+ErrorPercentiles PercentilesOf(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const auto rank = [&](double p) {
+    const auto index = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size())));
+    return values[std::clamp<std::size_t>(index, 1, values.size()) - 1];
+  };
+  return {rank(0.50), rank(0.95), rank(0.99)};
+}
+
+}  // namespace
+
 TrajectoryError EvaluateTrajectory(const std::vector<TimedPose>& estimate, const std::vector<TimedPose>& reference,
                                    bool align, double max_gap_s) {
   TrajectoryError out;
@@ -44,22 +57,37 @@ TrajectoryError EvaluateTrajectory(const std::vector<TimedPose>& estimate, const
     out.reference_T_estimate = Se2(mean_ref - rotation.Rotation() * mean_est, angle);
   }
 
-  std::vector<double> distances;
+  std::vector<double> distances, longitudinal, lateral;
   double squares = 0.0, sum = 0.0, rotation_squares = 0.0;
+  std::size_t within_0_02 = 0, within_0_025 = 0;
   for (std::size_t i = 0; i < est.size(); ++i) {
     const Se2 aligned = out.reference_T_estimate * est[i];
-    const double d = (aligned.translation() - ref[i].translation()).norm();
-    const double dtheta = NormalizeAngle(aligned.theta() - ref[i].theta()) * 180.0 / std::numbers::pi;
+    const Eigen::Vector2d difference = aligned.translation() - ref[i].translation();
+    const Eigen::Vector2d in_reference = ref[i].Rotation().transpose() * difference;
+    const double d = difference.norm();
+    const double heading_error = std::abs(NormalizeAngle(aligned.theta() - ref[i].theta()));
+    const double dtheta = heading_error * 180.0 / std::numbers::pi;
     distances.push_back(d);
+    longitudinal.push_back(std::abs(in_reference.x()));
+    lateral.push_back(std::abs(in_reference.y()));
     squares += d * d;
     sum += d;
     rotation_squares += dtheta * dtheta;
     out.max_m = std::max(out.max_m, d);
+    out.heading_worst_rad = std::max(out.heading_worst_rad, heading_error);
+    within_0_02 += heading_error <= 0.02 ? 1 : 0;
+    within_0_025 += heading_error <= 0.025 ? 1 : 0;
+    ++out.heading_histogram[std::min(kHeadingBins - 1, static_cast<std::size_t>(heading_error / kHeadingBinRad))];
   }
   const auto n = static_cast<double>(est.size());
   out.rmse_m = std::sqrt(squares / n);
   out.mean_m = sum / n;
   out.rotation_rmse_deg = std::sqrt(rotation_squares / n);
+  out.heading_within_0_02 = static_cast<double>(within_0_02) / n;
+  out.heading_within_0_025 = static_cast<double>(within_0_025) / n;
+  out.position_m = PercentilesOf(distances);
+  out.longitudinal_m = PercentilesOf(std::move(longitudinal));
+  out.lateral_m = PercentilesOf(std::move(lateral));
   std::nth_element(distances.begin(), distances.begin() + static_cast<std::ptrdiff_t>(distances.size() / 2),
                    distances.end());
   out.median_m = distances[distances.size() / 2];

@@ -54,7 +54,10 @@ after at least --loop-min-path metres of travel).
   --max-gap S              the estimate's poses around a relation's time at most S apart (default 1)
 
 traj: the estimate sampled at the truth's times, position RMSE, mean, median and max (m)
-and heading RMSE (deg), in the frames as given (a map georeferenced to the truth's frame).
+and heading RMSE (deg), in the frames as given (a map georeferenced to the truth's frame);
+percentiles (50, 95, 99) of the position error and of its longitudinal and lateral parts
+(along and across the truth's heading); the heading error's share within 0.02 and
+0.025 rad, its worst and its histogram in 0.005 rad bins.
   --align                  after the best rigid 2D alignment (Horn), for an estimate in
                            another frame (raw odometry, a map not anchored to the truth)
   --trajectory, --reference  the same as --est, --truth
@@ -169,6 +172,19 @@ int EvalRelations(int argc, char** argv) {
   return 0;
 }
 
+std::string PercentilesJson(const std::string& name, const localization::evaluation::ErrorPercentiles& p) {
+  char text[160];
+  std::snprintf(text, sizeof text, "\"%s_p50_m\":%.6f,\"%s_p95_m\":%.6f,\"%s_p99_m\":%.6f", name.c_str(), p.p50,
+                name.c_str(), p.p95, name.c_str(), p.p99);
+  return text;
+}
+
+std::string HistogramJson(const localization::evaluation::TrajectoryError& e) {
+  std::string text;
+  for (const std::size_t count : e.heading_histogram) text += (text.empty() ? "" : ",") + std::to_string(count);
+  return text;
+}
+
 int EvalTraj(int argc, char** argv) {
   std::string trajectory_path, reference_path;
   bool align = false, json = false;
@@ -190,14 +206,27 @@ int EvalTraj(int argc, char** argv) {
   if (e.poses == 0) Fail(2, "the estimate covers none of the truth's times");
   if (json) {
     std::printf("{\"poses\":%zu,\"unmatched\":%zu,\"ate_rmse_m\":%.6f,\"ate_mean_m\":%.6f,\"ate_median_m\":%.6f,"
-                "\"ate_max_m\":%.6f,\"rotation_rmse_deg\":%.6f,\"aligned\":%s}\n",
+                "\"ate_max_m\":%.6f,\"rotation_rmse_deg\":%.6f,\"aligned\":%s,%s,%s,%s,"
+                "\"heading_within_0_02\":%.6f,\"heading_within_0_025\":%.6f,\"heading_worst_rad\":%.6f,"
+                "\"heading_histogram_bin_rad\":%.3f,\"heading_histogram\":[%s]}\n",
                 e.poses, e.unmatched, e.rmse_m, e.mean_m, e.median_m, e.max_m, e.rotation_rmse_deg,
-                align ? "true" : "false");
+                align ? "true" : "false", PercentilesJson("position", e.position_m).c_str(),
+                PercentilesJson("longitudinal", e.longitudinal_m).c_str(),
+                PercentilesJson("lateral", e.lateral_m).c_str(), e.heading_within_0_02, e.heading_within_0_025,
+                e.heading_worst_rad, localization::evaluation::kHeadingBinRad, HistogramJson(e).c_str());
   } else {
     std::printf("poses: %zu compared, %zu outside the estimate; %s\n", e.poses, e.unmatched,
                 align ? "rigidly aligned" : "frames as given");
     std::printf("ATE: rmse %.4f m, mean %.4f m, median %.4f m, max %.4f m; heading rmse %.3f deg\n", e.rmse_m,
                 e.mean_m, e.median_m, e.max_m, e.rotation_rmse_deg);
+    const auto row = [](const char* name, const localization::evaluation::ErrorPercentiles& p) {
+      std::printf("%-13s p50 %.4f m, p95 %.4f m, p99 %.4f m\n", name, p.p50, p.p95, p.p99);
+    };
+    row("position:", e.position_m);
+    row("longitudinal:", e.longitudinal_m);
+    row("lateral:", e.lateral_m);
+    std::printf("heading: %.2f %% within 0.02 rad, %.2f %% within 0.025 rad, worst %.4f rad\n",
+                100.0 * e.heading_within_0_02, 100.0 * e.heading_within_0_025, e.heading_worst_rad);
   }
   return 0;
 }

@@ -140,6 +140,46 @@ TEST(TrajectoryError, MeasuresAKnownOffset) {
   EXPECT_NEAR(e.median_m, 0.0, 1e-12);
 }
 
+// Around the square, the estimate 0.1 m to the left of the truth and 0.02 m ahead, its
+// heading off by 0.0005 rad and 0.001 rad more per pose (0.0005 .. 0.1595 rad, clear of
+// the bins' edges).
+TEST(TrajectoryError, SplitsPositionAlongAndAcrossTheHeadingAndBinsTheHeadingError) {
+  const auto reference = Square();
+  std::vector<TimedPose> estimate;
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    estimate.push_back({reference[i].time_s, reference[i].pose * Se2(0.02, 0.1, 0.0005 + 0.001 * static_cast<double>(i))});
+  }
+  const TrajectoryError e = EvaluateTrajectory(estimate, reference, /*align=*/false);
+  ASSERT_EQ(e.poses, 160u);
+  EXPECT_NEAR(e.longitudinal_m.p99, 0.02, 1e-9);
+  EXPECT_NEAR(e.lateral_m.p50, 0.1, 1e-9);
+  EXPECT_NEAR(e.position_m.p95, std::hypot(0.02, 0.1), 1e-9);
+  EXPECT_NEAR(e.heading_within_0_02, 20.0 / 160.0, 1e-12);
+  EXPECT_NEAR(e.heading_within_0_025, 25.0 / 160.0, 1e-12);
+  EXPECT_NEAR(e.heading_worst_rad, 0.1595, 1e-9);
+  ASSERT_EQ(e.heading_histogram.size(), kHeadingBins);
+  std::size_t total = 0;
+  for (const std::size_t count : e.heading_histogram) total += count;
+  EXPECT_EQ(total, 160u);
+  EXPECT_EQ(e.heading_histogram[1], 5u);       // 0.0055 .. 0.0095 rad
+  EXPECT_EQ(e.heading_histogram.back(), 60u);  // 0.1005 .. 0.1595 rad
+}
+
+TEST(TrajectoryError, PercentilesAreNearestRank) {
+  const auto reference = Square();
+  std::vector<TimedPose> estimate = reference;
+  // Two poses of 160 off sideways: 1.25 % of them, inside the top 5 % but not the top 1 %.
+  estimate[3].pose = estimate[3].pose * Se2(0.0, 1.0, 0.0);
+  estimate[7].pose = estimate[7].pose * Se2(0.0, 2.0, 0.0);
+  const TrajectoryError e = EvaluateTrajectory(estimate, reference, /*align=*/false);
+  EXPECT_EQ(e.position_m.p50, 0.0);
+  EXPECT_EQ(e.position_m.p95, 0.0);
+  EXPECT_NEAR(e.position_m.p99, 1.0, 1e-9);  // the 159th of 160 sorted
+  EXPECT_NEAR(e.lateral_m.p99, 1.0, 1e-9);
+  EXPECT_EQ(e.longitudinal_m.p99, 0.0);
+  EXPECT_NEAR(e.max_m, 2.0, 1e-9);
+}
+
 TEST(TrajectoryFile, RoundTripsThroughTum) {
   const auto reference = Square();
   const auto path = std::filesystem::temp_directory_path() / ("flat2d_traj_" + std::to_string(::getpid()) + ".tum");

@@ -83,6 +83,12 @@ class DriveMap(unittest.TestCase):
         ate = json.loads(result.stdout)
         self.assertFalse(ate["aligned"])
         self.assertGreater(ate["poses"], 1000)
+        self.assertEqual(sum(ate["heading_histogram"]), ate["poses"])
+        self.assertEqual(ate["heading_histogram_bin_rad"], 0.005)
+        self.assertLessEqual(ate["heading_within_0_02"], ate["heading_within_0_025"])
+        for part in ("position", "longitudinal", "lateral"):
+            self.assertLessEqual(ate[part + "_p50_m"], ate[part + "_p95_m"])
+            self.assertLessEqual(ate[part + "_p99_m"], ate["ate_max_m"] + 1e-6)
         aligned = json.loads(run(EVAL, "traj", "--truth", os.path.join(self.drive, "truth.tum"),
                                  "--est", os.path.join(WORK, "occluders_map.tum"), "--align", "--json").stdout)
         self.assertTrue(aligned["aligned"])
