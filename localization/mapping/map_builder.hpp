@@ -174,7 +174,8 @@ class MapBuilder {
     std::size_t keyframe = 0;
     Eigen::Matrix3d chain_covariance;  // the newest keyframe relative to this one, in its frame
   };
-  // Earlier keyframes the newest may be at, nearest first (see the header).
+  // Loop closures (map_builder_loops.cpp). Earlier keyframes the newest may be at,
+  // nearest first (see the header).
   std::vector<LoopCandidate> NearbyKeyframes() const;
   void CloseLoops();
   void TryLoop(std::size_t j, const Eigen::Matrix3d& chain_covariance);
@@ -183,7 +184,6 @@ class MapBuilder {
   Se2 ScaledStep(const Se2& step) const;
   void UpdateScale(const Se2& odometry_step, const Se2& matched_step, const Eigen::Matrix3d& information);
   void RescaleOdometryFactors();
-
   void RefineSweep();
 
   MapBuilderOptions options_;

@@ -27,8 +27,8 @@ std::vector<Eigen::Vector2d> SlammableCells(const maps::ClassGrid& grid) {
 
 // The first keyframe starts at the anchor's pose, but one pose fixes the map's heading only
 // as well as the first few matches do: a tenth of a degree off moves the far end of a
-// 300 m drive by half a metre. The anchor is a track (GNSS, or the simulator's truth), so the optimized map
-// is moved by the rigid motion that best fits all its keyframes to it.
+// 300 m drive by half a metre. The anchor is a track (GNSS, or the simulator's truth), so
+// the optimized map is moved by the rigid motion that best fits all its keyframes to it.
 void FitToAnchor(const std::vector<evaluation::TimedPose>& anchor, mapping::MapBuilder& builder) {
   std::vector<evaluation::TimedPose> keyframes;
   for (const mapping::Keyframe& k : builder.keyframes()) keyframes.push_back({k.time_s, k.estimate});

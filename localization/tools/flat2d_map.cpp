@@ -51,9 +51,9 @@ at its optimized pose written as a prior map with viewpoint sub-maps.
   --pcap CAPTURE --can LOG --dbc DBC --odometry CONFIG
                         a Velodyne drive: structure grids per revolution, CAN odometry
   --config FILE         drive: StructureGridOptions (default: the shipped structure_grid.textproto)
-  --anchor FILE.tum     drive: a track in the map frame (GNSS, truth): the first keyframe
-                        starts at its pose, the optimized map is fitted to it rigidly
-                        (GNSS, the simulator's truth.tum); default: the odometry frame
+  --anchor FILE.tum     drive: a track in the map frame (GNSS, the simulator's truth.tum):
+                        the first keyframe starts at its pose, the optimized map is fitted
+                        to it rigidly; default: the odometry frame
   --out MAP             the prior map file
   --png FILE            preview: the map, the optimized trajectory (blue), viewpoints (green)
   --trajectory FILE     the optimized trajectory (TUM): every scan, or every CAN sample
