@@ -69,12 +69,25 @@ SlidingWindowGraph::UnaryFactor& SlidingWindowGraph::Unary(int position, int k) 
                 static_cast<std::size_t>(k)];
 }
 
+void SlidingWindowGraph::Clear() {
+  oldest_ += size_;
+  size_ = 0;
+  head_ = 0;
+  prior_ = MarginalPrior{};
+}
+
 Result<NodeId> SlidingWindowGraph::AddNode(TimeNs time, const Se2& global_T_vehicle) {
   if (!IsFinite(global_T_vehicle)) return MakeError("node estimate is not finite");
   if (size_ > 0 && time <= nodes_[Slot(size_ - 1)].time) {
     return MakeError("node time must be after the newest node's");
   }
-  if (size_ == options_.capacity) MarginalizeOldest();
+  if (size_ == options_.capacity) {
+    if (options_.marginalize) {
+      MarginalizeOldest();
+    } else {
+      DropOldest();
+    }
+  }
   nodes_[Slot(size_)] = Node{.time = time, .between_count = 0, .unary_count = 0};
   estimates_[static_cast<std::size_t>(size_)] = global_T_vehicle;
   ++size_;

@@ -54,6 +54,9 @@ struct SlidingWindowOptions {
   int max_between_per_node = 2;
   // Unary factors (matches, GNSS, initial pose) on one node; storage capacity x this.
   int max_unary_per_node = 2;
+  // Marginalize the oldest node into the prior (M1) when the window is full; false drops it
+  // with its factors (what a fixed-lag smoother without marginalization does; for ablation).
+  bool marginalize = true;
   // Damp a step that raises the cost (Levenberg-Marquardt); false: plain Gauss-Newton.
   bool levenberg_marquardt = true;
   // Converged when no increment component exceeds this (m or rad).
@@ -101,6 +104,9 @@ class SlidingWindowGraph {
   // estimates; 0 only evaluates the cost and the covariance at the current estimates. Fails when the window is empty or not anchored (no prior or match reaches
   // the newest node, so its covariance is unbounded); the estimates are then unchanged.
   Result<WindowSolution> Solve(int max_iterations);
+  // Drops every node, factor and the marginal prior (a relocalized vehicle starts afresh);
+  // ids go on from where they were.
+  void Clear();
 
   int size() const { return size_; }
   bool Contains(NodeId id) const { return size_ > 0 && id >= oldest_ && id < oldest_ + size_; }
@@ -142,6 +148,7 @@ class SlidingWindowGraph {
   // sliding_window_solve.cpp
   double Assemble();  // linearizes all factors at estimates_, fills system_, returns cost
   void MarginalizeOldest();
+  void DropOldest();
 
   SlidingWindowOptions options_;
   std::vector<Node> nodes_;                // capacity, a ring starting at head_

@@ -169,6 +169,10 @@ void SlidingWindowGraph::MarginalizeOldest() {
     b.segment<3>(t) += omega_b.transpose() * lin.error;
   }
   prior_ = EliminateFirstNode(h, b, c, estimates_.data() + 1, kept);  // M1
+  DropOldest();
+}
+
+void SlidingWindowGraph::DropOldest() {
   // Drop the slot; estimates stay in window order.
   const auto window = static_cast<std::ptrdiff_t>(size_);
   std::copy(estimates_.begin() + 1, estimates_.begin() + window, estimates_.begin());

@@ -70,6 +70,11 @@ void MatchGrid::SetOccupied(int x, int y, bool occupied) {
   if (geometry_.Contains(x, y)) cells_[Index(x, y)] = occupied ? 1 : 0;
 }
 
+void MatchGrid::Reset(const Eigen::Vector2d& origin) {
+  geometry_.origin = origin;
+  std::fill(cells_.begin(), cells_.end(), std::uint8_t{0});
+}
+
 bool MatchGrid::MarkPoint(const Eigen::Vector2d& p) {
   const Eigen::Vector2d cell = (p - geometry_.origin) / geometry_.resolution;
   // Compare in double first: a far point would overflow the int conversion.

@@ -57,6 +57,9 @@ class MatchGrid {
     return geometry_.Contains(x, y) && cells_[Index(x, y)] != 0;
   }
   void SetOccupied(int x, int y, bool occupied = true);
+  // Clears every cell and moves the grid to `origin`, keeping its size (no allocation): a
+  // window that follows the vehicle over a larger map.
+  void Reset(const Eigen::Vector2d& origin);
   // Marks the cell of world point `p`; false when it falls outside the grid.
   bool MarkPoint(const Eigen::Vector2d& p);
   std::size_t OccupiedCount() const;

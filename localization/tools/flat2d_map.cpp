@@ -116,17 +116,7 @@ struct BuildArgs {
 };
 
 std::vector<double> ParseList(std::string_view flag, const std::string& text, std::size_t count) {
-  std::vector<double> values;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = text.find(',', start);
-    const std::string part = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    values.push_back(maps::cli::ParseNumber(kTool, flag, part.c_str()));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  if (values.size() != count) Fail(1, std::string(flag) + " takes " + std::to_string(count) + " comma-separated numbers");
-  return values;
+  return maps::cli::ParseNumberList(kTool, flag, text, count);
 }
 
 maps::Georeference ParseUtm(const std::string& text) {

@@ -28,6 +28,23 @@ double ParseNumber(std::string_view tool, std::string_view flag, const char* tex
   return value;
 }
 
+std::vector<double> ParseNumberList(std::string_view tool, std::string_view flag, const std::string& text,
+                                    std::size_t count) {
+  std::vector<double> values;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string part = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    values.push_back(ParseNumber(tool, flag, part.c_str()));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (values.size() != count) {
+    Fail(tool, 1, std::string(flag) + " takes " + std::to_string(count) + " comma-separated numbers");
+  }
+  return values;
+}
+
 std::int64_t ParseInteger(std::string_view tool, std::string_view flag, const char* text,
                           std::int64_t min, std::int64_t max) {
   char* end = nullptr;

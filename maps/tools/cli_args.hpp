@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace flat2d::maps::cli {
 
@@ -18,6 +19,9 @@ const char* OptionValue(std::string_view tool, int argc, char** argv, int& i);
 double ParseNumber(std::string_view tool, std::string_view flag, const char* text);
 std::int64_t ParseInteger(std::string_view tool, std::string_view flag, const char* text,
                           std::int64_t min, std::int64_t max);
+// `count` comma-separated numbers ("1.5,-2,0.1"), or Fail(1) naming the flag.
+std::vector<double> ParseNumberList(std::string_view tool, std::string_view flag, const std::string& text,
+                                    std::size_t count);
 std::uint32_t ParseAddress(std::string_view tool, std::string_view flag, const std::string& text);
 
 }  // namespace flat2d::maps::cli

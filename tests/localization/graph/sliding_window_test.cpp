@@ -232,3 +232,36 @@ TEST(SlidingWindow, CovarianceGrowsWithoutMatchesAndShrinksWhenTheyResume) {
 
 }  // namespace
 }  // namespace flat2d::localization::graph
+
+namespace flat2d::localization::graph {
+namespace {
+
+// Clear empties the window and its marginal prior (a relocalized vehicle starts afresh);
+// ids go on, and the cleared window needs a new anchor before it can be solved.
+TEST(SlidingWindow, ClearDropsNodesFactorsAndThePriorButKeepsCounting) {
+  SlidingWindowGraph window = MakeWindow(4);
+  const Eigen::Matrix3d information = Eigen::Vector3d(100.0, 100.0, 1000.0).asDiagonal();
+  for (int k = 0; k < 6; ++k) {  // two nodes marginalized into the prior
+    const NodeId id = *window.AddNode(k + 1, Se2(Eigen::Vector2d(k, 0.0), 0.0));
+    const Status added = k == 0 ? window.AddPrior(id, Se2(), information)
+                                : window.AddOdometry(id - 1, id, Se2(Eigen::Vector2d(1.0, 0.0), 0.0), information);
+    ASSERT_TRUE(added.ok());
+  }
+  ASSERT_GT(window.marginal_prior().size, 0);
+  window.Clear();
+  EXPECT_EQ(window.size(), 0);
+  EXPECT_EQ(window.marginal_prior().size, 0);
+  EXPECT_FALSE(window.Contains(5));
+  EXPECT_FALSE(window.Solve(5).ok());  // empty
+  const NodeId next = *window.AddNode(10, Se2(Eigen::Vector2d(3.0, 4.0), 0.5));
+  EXPECT_EQ(next, 6);
+  EXPECT_FALSE(window.Solve(5).ok());  // not anchored: the old prior is gone
+  ASSERT_TRUE(window.AddPrior(next, Se2(Eigen::Vector2d(3.0, 4.0), 0.5), information).ok());
+  auto solution = window.Solve(5);
+  ASSERT_TRUE(solution.ok());
+  EXPECT_NEAR(solution->newest_global_T_vehicle.x(), 3.0, 1e-9);
+  EXPECT_NEAR(solution->newest_covariance(0, 0), 0.01, 1e-9);  // the prior alone
+}
+
+}  // namespace
+}  // namespace flat2d::localization::graph

@@ -84,3 +84,27 @@ TEST(ScanPointsTest, VoxelDecimationKeepsOneCentroidPerVoxelWithoutAllocating) {
 
 }  // namespace
 }  // namespace flat2d::localization
+
+namespace flat2d::localization {
+namespace {
+
+TEST(MatchGridTest, ResetClearsAndMovesWithoutChangingTheSize) {
+  GridGeometry geometry;
+  geometry.width = 40;
+  geometry.height = 30;
+  geometry.resolution = 0.05;
+  MatchGrid grid(geometry);
+  grid.SetOccupied(3, 4);
+  ASSERT_TRUE(grid.MarkPoint({1.0, 1.0}));
+  ASSERT_EQ(grid.OccupiedCount(), 2u);
+  grid.Reset({10.0, -5.0});
+  EXPECT_EQ(grid.OccupiedCount(), 0u);
+  EXPECT_EQ(grid.width(), 40);
+  EXPECT_EQ(grid.geometry().origin, Eigen::Vector2d(10.0, -5.0));
+  EXPECT_FALSE(grid.MarkPoint({1.0, 1.0}));  // now outside
+  EXPECT_TRUE(grid.MarkPoint({10.52, -4.98}));
+  EXPECT_TRUE(grid.Occupied(10, 0));
+}
+
+}  // namespace
+}  // namespace flat2d::localization
