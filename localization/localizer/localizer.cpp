@@ -1,0 +1,360 @@
+#include "localization/localizer/localizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <numbers>
+#include <utility>
+
+#include "maps/grid/cell_class.hpp"
+
+namespace flat2d::localization {
+namespace {
+
+// Added to the odometry's covariance before inverting it: standing still, dead reckoning
+// says "no motion, no noise" (dead_reckoning.hpp D6), which is not an information matrix.
+const Eigen::Matrix3d kOdometryCovarianceFloor = Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal();
+
+double ThreadCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+Se2 Se2Of(const Eigen::Isometry2d& pose) {
+  return Se2(pose.translation(), std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)));
+}
+
+double PositionSigma(const Eigen::Matrix3d& covariance) {
+  return std::sqrt(std::max(covariance(0, 0), covariance(1, 1)));
+}
+
+MatcherLimits LimitsFor(const LocalizerOptions& options, const MapWindow& window) {
+  MatcherLimits limits;
+  limits.max_points = options.max_scan_points;
+  limits.max_map_cells = window.grid().geometry().CellCount();
+  const double widest = std::max(options.tracking_window.linear, options.relocalization_max_radius_m);
+  limits.max_window_cells = static_cast<int>(std::ceil(widest / window.grid().resolution())) + 2;
+  limits.max_headings = 1024;
+  return limits;
+}
+
+MatcherOptions MatcherOptionsFor() {
+  MatcherOptions options;
+  options.min_score = 0.0;  // judged by the localizer: tracking and relocalization differ
+  options.min_points = 20;
+  return options;
+}
+
+}  // namespace
+
+std::string_view LocalizerStateName(LocalizerState state) {
+  switch (state) {
+    case LocalizerState::kInitializing: return "INITIALIZING";
+    case LocalizerState::kLocalized: return "LOCALIZED";
+    case LocalizerState::kDegraded: return "DEGRADED";
+    case LocalizerState::kLost: return "LOST";
+  }
+  return "UNKNOWN";
+}
+
+Status ValidateOptions(const LocalizerOptions& options) {
+  if (Status window = ValidateOptions(options.map_window); !window.ok()) return window;
+  if (Status graph = graph::ValidateOptions(options.graph); !graph.ok()) return MakeError("graph: " + graph.error().message);
+  if (!(options.point_range_m > 0.0)) return MakeError("point_range_m must be positive");
+  if (!(options.decimation_m > 0.0)) return MakeError("decimation_m must be positive");
+  if (options.max_scan_points < 20 || options.max_grid_points < options.max_scan_points) {
+    return MakeError("max_scan_points must be >= 20 and max_grid_points >= max_scan_points");
+  }
+  if (!(options.tracking_window.linear > 0.0) || !(options.tracking_window.angular > 0.0)) {
+    return MakeError("tracking_window must be positive");
+  }
+  if (!(options.min_match_sigma_m > 0.0) || !(options.min_match_sigma_rad > 0.0)) {
+    return MakeError("min_match_sigma_m and min_match_sigma_rad must be positive");
+  }
+  if (!(options.odometry_sigma_per_m >= 0.0) || !(options.odometry_sigma_rad_per_m >= 0.0)) {
+    return MakeError("odometry_sigma_per_m and odometry_sigma_rad_per_m must be >= 0");
+  }
+  if (options.solve_iterations < 1) return MakeError("solve_iterations must be >= 1");
+  if (options.degraded_after_ns <= 0 || options.lost_after_ns < options.degraded_after_ns ||
+      options.initial_lost_after_ns <= 0) {
+    return MakeError("need 0 < degraded_after <= lost_after and initial_lost_after > 0");
+  }
+  if (options.max_tracking_window_m < options.tracking_window.linear ||
+      options.max_tracking_window_m > options.relocalization_max_radius_m) {
+    return MakeError("max_tracking_window_m must be in [tracking_window, relocalization_max_radius_m]");
+  }
+  if (!(options.relocalization_max_peak_ratio > 0.0 && options.relocalization_max_peak_ratio <= 1.0)) {
+    return MakeError("relocalization_max_peak_ratio must be in (0, 1]");
+  }
+  if (!(options.relocalization_radius_m > 0.0) || options.relocalization_max_radius_m < options.relocalization_radius_m ||
+      !(options.relocalization_growth >= 1.0)) {
+    return MakeError("relocalization radius must be positive, growth >= 1, maximum >= the start");
+  }
+  return Status::Ok();
+}
+
+Result<Localizer> Localizer::Create(maps::PriorMapReader map, const LocalizerOptions& options) {
+  if (Status valid = ValidateOptions(options); !valid.ok()) return valid.error();
+  auto window = MapWindow::Create(map, options.map_window);
+  if (!window.ok()) return window.error();
+  auto graph = graph::SlidingWindowGraph::Create(options.graph);
+  if (!graph.ok()) return graph.error();
+  return Localizer(std::move(map), options, std::move(*window), std::move(*graph));
+}
+
+Localizer::Localizer(maps::PriorMapReader map, const LocalizerOptions& options, MapWindow window,
+                     graph::SlidingWindowGraph graph)
+    : options_(options),
+      map_(std::move(map)),
+      window_(std::move(window)),
+      matcher_(LimitsFor(options, window_), MatcherOptionsFor()),
+      scan_(options.max_grid_points),
+      graph_(std::move(graph)) {}
+
+void Localizer::SetInitialPose(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen::Matrix3d& covariance) {
+  has_initial_pose_ = true;
+  initial_time_ns_ = time_ns;
+  initial_pose_ = global_T_vehicle;
+  initial_covariance_ = covariance;
+}
+
+RevolutionReport Localizer::AddGrid(const maps::PublishedGrid& grid, const PoseHistory& odometry) {
+  RevolutionReport report;
+  report.state = state_;
+  if (grid.grid == nullptr || !grid.complete) return report;
+  ++stats_.grids;
+  if (grid.fans_without_pose > 0) {  // placed without odometry: neither the scan nor its pose is known
+    ++stats_.grids_without_odometry;
+    return report;
+  }
+  const TimeNs time_ns = grid.start_ns;
+  const Se2 local_T_vehicle = Se2Of(grid.local_T_grid);
+  if (has_initial_pose_) StartFromInitialPose(time_ns, local_T_vehicle, odometry);
+  if (!has_fix_ || time_ns <= last_node_ns_) return report;
+  report.used = true;
+
+  const double start = ThreadCpuSeconds();
+  ExtractScan(*grid.grid);
+  const Se2 prediction = global_T_local_ * local_T_vehicle;
+  const MatchResult match = MatchScan(prediction, time_ns, odometry, report);
+  const double matched = ThreadCpuSeconds();
+  report.match_s = matched - start;
+  Track(time_ns, local_T_vehicle, match, odometry, report);
+  report.solve_s = ThreadCpuSeconds() - matched;
+  UpdateState(time_ns);
+  report.state = state_;
+  return report;
+}
+
+void Localizer::StartFromInitialPose(TimeNs time_ns, const Se2& local_T_vehicle, const PoseHistory& odometry) {
+  has_initial_pose_ = false;
+  // The pose was given at its own time: odometry carries it to the grid's.
+  Se2 pose = initial_pose_;
+  Eigen::Matrix3d covariance = initial_covariance_;
+  const RelativeMotion motion = odometry.Between(initial_time_ns_, time_ns);
+  if (motion.ok()) {
+    pose = initial_pose_ * motion.a_T_b;
+    covariance = ComposeCovariance(initial_pose_, initial_covariance_, motion.a_T_b, motion.covariance);
+  }
+  Restart(time_ns - 1, pose, (covariance + kOdometryCovarianceFloor).inverse());
+  global_T_local_ = pose * local_T_vehicle.Inverse();
+  last_accepted_ns_ = time_ns;
+  ever_localized_ = false;
+  const double sigma_m = PositionSigma(covariance);
+  const double sigma_rad = std::sqrt(covariance(2, 2));
+  relocalizing_ = 3.0 * sigma_m > options_.tracking_window.linear || 3.0 * sigma_rad > options_.tracking_window.angular;
+  relocalization_radius_m_ = std::clamp(3.0 * sigma_m, options_.tracking_window.linear, options_.relocalization_max_radius_m);
+  state_ = relocalizing_ ? LocalizerState::kLost : LocalizerState::kInitializing;
+}
+
+void Localizer::ExtractScan(const maps::ClassGrid& grid) {
+  scan_.Clear();
+  const maps::GridGeometry& g = grid.geometry();
+  const std::span<const maps::CellClass> cells = grid.cells();
+  const double range2 = options_.point_range_m * options_.point_range_m;
+  for (int row = 0; row < g.height; ++row) {
+    for (int col = 0; col < g.width; ++col) {
+      if (cells[g.Offset({col, row})] != maps::CellClass::kSlammable) continue;
+      const Eigen::Vector2d p = g.CellCenter({col, row});
+      if (p.squaredNorm() <= range2) scan_.Add(p);
+    }
+  }
+  // The matcher takes at most max_scan_points: coarser squares until the scan fits.
+  double voxel = options_.decimation_m;
+  scan_.VoxelDecimate(voxel);
+  while (scan_.size() > options_.max_scan_points) {
+    voxel *= 1.25;
+    scan_.VoxelDecimate(voxel);
+  }
+}
+
+SearchWindow Localizer::TrackingWindow(TimeNs time_ns, const PoseHistory& odometry) const {
+  SearchWindow window = options_.tracking_window;
+  const GlobalPose predicted = PoseAt(time_ns, odometry);
+  if (predicted.ok) {
+    window.linear = std::clamp(3.0 * PositionSigma(predicted.covariance), options_.tracking_window.linear,
+                               options_.max_tracking_window_m);
+  }
+  return window;
+}
+
+MatchResult Localizer::MatchScan(const Se2& prediction, TimeNs time_ns, const PoseHistory& odometry,
+                                 RevolutionReport& report) {
+  report.points = scan_.size();
+  report.relocalizing = relocalizing_;
+  // A global search wants the window centred on its guess; tracking moves it every recentre_m.
+  const double max_offset = relocalizing_ ? 1.0 : options_.map_window.recentre_m;
+  const Result<bool> moved = window_.Cover(map_, prediction.translation(), max_offset);
+  MatchResult result;
+  if (!moved.ok()) {
+    ++stats_.map_errors;
+    result.status = MatchStatus::kNoMap;
+    report.match = result.status;
+    return result;
+  }
+  if (*moved) {
+    ++stats_.map_window_moves;
+    if (!matcher_.SetMap(window_.grid()).ok()) ++stats_.map_errors;
+  }
+  if (relocalizing_) {
+    ++stats_.relocalizations;
+    result = matcher_.Relocalize(scan_.points(), prediction, {relocalization_radius_m_, std::numbers::pi},
+                                 options_.relocalization);
+  } else {
+    result = matcher_.Match(scan_.points(), prediction, TrackingWindow(time_ns, odometry));
+  }
+  report.match = result.status;
+  report.score = result.score;
+  report.match_pose = result.map_T_vehicle;
+  report.match_covariance = result.covariance;
+  return result;
+}
+
+bool Localizer::Accepts(const MatchResult& match) const {
+  if (!match.ok()) return false;
+  const double matched_points = match.score * static_cast<double>(match.points);
+  if (relocalizing_) {
+    return match.score >= options_.relocalization_min_score &&
+           matched_points >= static_cast<double>(options_.relocalization_min_matched_points) &&
+           match.second_peak_score <= options_.relocalization_max_peak_ratio * match.score;
+  }
+  const double min_score = ever_localized_ ? options_.min_score : options_.confirm_min_score;
+  return match.score >= min_score && matched_points >= static_cast<double>(options_.min_matched_points);
+}
+
+Eigen::Matrix3d Localizer::MatchInformation(const Eigen::Matrix3d& covariance) const {
+  const double m2 = options_.min_match_sigma_m * options_.min_match_sigma_m;
+  const double r2 = options_.min_match_sigma_rad * options_.min_match_sigma_rad;
+  const Eigen::Matrix3d floored = covariance + Eigen::Vector3d(m2, m2, r2).asDiagonal().toDenseMatrix();
+  const Eigen::Matrix3d information = floored.inverse();
+  return 0.5 * (information + information.transpose());
+}
+
+Eigen::Matrix3d Localizer::OdometryInformation(const RelativeMotion& motion) const {
+  const double length = motion.a_T_b.translation().norm();
+  const double linear = options_.odometry_sigma_per_m * length;
+  const double angular = options_.odometry_sigma_rad_per_m * length;
+  const Eigen::Matrix3d systematic = Eigen::Vector3d(linear * linear, linear * linear, angular * angular).asDiagonal();
+  const Eigen::Matrix3d information = (motion.covariance + systematic + kOdometryCovarianceFloor).inverse();
+  return 0.5 * (information + information.transpose());
+}
+
+void Localizer::Track(TimeNs time_ns, const Se2& local_T_vehicle, const MatchResult& match,
+                      const PoseHistory& odometry, RevolutionReport& report) {
+  const bool passed = Accepts(match);
+  if (relocalizing_) {
+    if (!passed) {
+      ++stats_.matches_rejected;
+      relocalization_radius_m_ = std::min(relocalization_radius_m_ * options_.relocalization_growth,
+                                          options_.relocalization_max_radius_m);
+      return;
+    }
+    // A global match replaces the window: the poses before it were wrong.
+    ++stats_.relocalized;
+    ++stats_.matches_accepted;
+    Restart(time_ns, match.map_T_vehicle, MatchInformation(match.covariance));
+    global_T_local_ = last_node_pose_ * local_T_vehicle.Inverse();
+    relocalizing_ = false;
+    last_accepted_ns_ = time_ns;
+    ever_localized_ = true;
+    report.match_accepted = true;
+    return;
+  }
+
+  const Se2 prediction = global_T_local_ * local_T_vehicle;
+  const RelativeMotion motion = odometry.Between(last_node_ns_, time_ns);
+  const graph::NodeId previous = graph_.newest_id();
+  const Result<graph::NodeId> node = graph_.AddNode(time_ns, passed ? match.map_T_vehicle : prediction);
+  if (!node.ok()) return;
+  bool linked = false;
+  if (motion.ok() && graph_.Contains(previous)) {
+    linked = graph_.AddOdometry(previous, *node, motion.a_T_b, OdometryInformation(motion)).ok();
+  }
+  if (!linked) {  // the odometry's window no longer reaches the last node: start over from the prediction
+    Restart(time_ns, prediction, (last_node_covariance_ + kOdometryCovarianceFloor).inverse());
+  }
+  const bool added = passed && graph_.AddMatch(graph_.newest_id(), match.map_T_vehicle,
+                                              MatchInformation(match.covariance), options_.null_hypothesis).ok();
+  const Result<graph::WindowSolution> solution = graph_.Solve(options_.solve_iterations);
+  if (!solution.ok()) return;
+  last_node_ns_ = time_ns;
+  last_node_pose_ = solution->newest_global_T_vehicle;
+  last_node_covariance_ = solution->newest_covariance;
+  global_T_local_ = last_node_pose_ * local_T_vehicle.Inverse();
+  const bool switched_off = graph_.NullMatches(graph_.newest_id()).value_or(0) > 0;
+  report.match_accepted = added && !switched_off;
+  if (report.match_accepted) {
+    ++stats_.matches_accepted;
+    last_accepted_ns_ = time_ns;
+    ever_localized_ = true;
+  } else {
+    ++stats_.matches_rejected;
+  }
+}
+
+void Localizer::Restart(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen::Matrix3d& information) {
+  graph_.Clear();
+  const Result<graph::NodeId> node = graph_.AddNode(time_ns, global_T_vehicle);
+  // A covariance that is not one (non-finite, not positive definite) falls back to a loose prior.
+  if (node.ok() && !graph_.AddPrior(*node, global_T_vehicle, 0.5 * (information + information.transpose())).ok()) {
+    (void)graph_.AddPrior(*node, global_T_vehicle, Eigen::Vector3d(1.0, 1.0, 100.0).asDiagonal());
+  }
+  has_fix_ = true;
+  last_node_ns_ = time_ns;
+  last_node_pose_ = global_T_vehicle;
+  last_node_covariance_ = information.inverse();
+}
+
+void Localizer::UpdateState(TimeNs time_ns) {
+  if (relocalizing_) {
+    state_ = LocalizerState::kLost;
+    return;
+  }
+  const TimeNs since_match = time_ns - last_accepted_ns_;
+  const TimeNs lost_after = ever_localized_ ? options_.lost_after_ns : options_.initial_lost_after_ns;
+  if (since_match > lost_after || PositionSigma(last_node_covariance_) > options_.lost_sigma_m) {
+    state_ = LocalizerState::kLost;
+    relocalizing_ = true;
+    relocalization_radius_m_ = options_.relocalization_radius_m;
+  } else if (since_match > options_.degraded_after_ns) {
+    state_ = ever_localized_ ? LocalizerState::kDegraded : LocalizerState::kInitializing;
+  } else {
+    state_ = ever_localized_ ? LocalizerState::kLocalized : LocalizerState::kInitializing;
+  }
+}
+
+GlobalPose Localizer::PoseAt(TimeNs time_ns, const PoseHistory& odometry) const {
+  GlobalPose pose;
+  pose.time_ns = time_ns;
+  pose.state = state_;
+  if (!has_fix_) return pose;
+  const RelativeMotion motion = odometry.Between(last_node_ns_, time_ns);
+  if (!motion.ok()) return pose;
+  pose.ok = true;
+  pose.global_T_vehicle = last_node_pose_ * motion.a_T_b;
+  pose.covariance = ComposeCovariance(last_node_pose_, last_node_covariance_, motion.a_T_b, motion.covariance);
+  return pose;
+}
+
+}  // namespace flat2d::localization

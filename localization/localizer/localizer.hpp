@@ -1,0 +1,201 @@
+// The L2G localizer (thesis 7.2, DESIGN.md "L2G factor graph"): the vehicle's odometry
+// frame `local` is tied to the prior map's frame `global` by global_T_local (L2G), estimated
+// from each revolution's structure grid matched against the map and fused with odometry in
+// a bounded sliding-window factor graph.
+//
+// Per revolution (AddGrid), with the grid's reference pose local_T_vehicle and time t:
+//  1. predict global_T_vehicle = L2G x local_T_vehicle, and move the map window there when
+//     the vehicle has left its centre (map_window.hpp);
+//  2. match the grid's slammable cells (vehicle frame, within point_range_m, decimated)
+//     against the window: tracking mode around the prediction, or, when lost, a global
+//     relocalization around it whose radius widens after every failure;
+//  3. add a node at t, the odometry between it and the previous node (pose_history.hpp H2,
+//     with its covariance), and an accepted match as a max-mixture factor against a broad
+//     null hypothesis, so one wrong match cannot drag the pose (sliding_window.hpp);
+//  4. solve the window (the oldest nodes are marginalized into a prior) and publish
+//     L2G = global_T_vehicle(t) x local_T_vehicle(t)^-1 with the newest node's covariance;
+//  5. update the state (localizer_state.hpp): LOCALIZED while matches are accepted,
+//     DEGRADED after degraded_after without one, LOST after lost_after or when the position
+//     is more uncertain than lost_sigma_m.
+// Between revolutions PoseAt composes the newest node with the odometry since its time, so
+// poses come at odometry rate with covariance from both.
+//
+// Fixed memory: the matcher, the map window, the scan buffer and the graph are sized in
+// Create; AddGrid, PoseAt and SetInitialPose do not allocate (a test counts).
+#pragma once
+
+#include <cstdint>
+
+#include <Eigen/Core>
+
+#include "hal/common/error.hpp"
+#include "hal/common/time.hpp"
+#include "localization/graph/sliding_window.hpp"
+#include "localization/localizer/localizer_state.hpp"
+#include "localization/localizer/map_window.hpp"
+#include "localization/matching/correlative_matcher.hpp"
+#include "localization/odometry/pose_history.hpp"
+#include "localization/odometry/se2.hpp"
+#include "maps/grid/revolution_gridder.hpp"
+#include "maps/prior_map/prior_map_reader.hpp"
+
+namespace flat2d::localization {
+
+struct LocalizerOptions {
+  MapWindowOptions map_window;
+  double point_range_m = 35.0;       // slammable cells farther away are not matched (a 50 m grid's corners)
+  double decimation_m = 0.1;         // one point per square this size
+  std::size_t max_grid_points = 60'000;  // slammable cells read from one grid
+  std::size_t max_scan_points = 3'000;   // matched per revolution (decimated further to fit)
+  SearchWindow tracking_window{1.0, 0.1};
+  // Tracking: a match counts when this share of the scan's points, and at least this many,
+  // land on the map's structure. The share is kept low on purpose: on a sparse street the
+  // few poles and trunks match while the cars alongside (slammable, not in the map) do not,
+  // and the campus drive spends seconds at 10-25 matched points of 100-250. The count, the
+  // match covariance and the max-mixture against the odometry decide instead.
+  double min_score = 0.02;
+  std::size_t min_matched_points = 8;
+  // Until a match has confirmed an initial pose, a tracking match must score this much: in
+  // a building, a pose metres off still puts a fifth of the scan on some wall.
+  double confirm_min_score = 0.3;
+  // While DEGRADED the search widens to three standard deviations of the predicted
+  // position, up to this (it must fit the matcher's window: relocalization_max_radius_m).
+  double max_tracking_window_m = 3.0;
+  // Floors on the match's standard deviations: the score surface of a sharp scene says
+  // millimetres, which would let one revolution's grid noise outweigh the odometry.
+  double min_match_sigma_m = 0.02;
+  double min_match_sigma_rad = 0.002;
+  // Added to the odometry's own covariance between nodes, per metre driven: dead reckoning's
+  // covariance models white noise, but a tyre radius or yaw-rate bias a few tenths of a
+  // percent off is systematic, and an odometry factor that ignored it would outweigh the
+  // matches and drag the estimate behind them.
+  double odometry_sigma_per_m = 0.01;       // of the step's length
+  double odometry_sigma_rad_per_m = 0.001;  // of the heading
+  graph::NullHypothesis null_hypothesis{.weight = 0.05, .information_scale = 1e-3};
+  graph::SlidingWindowOptions graph{.capacity = 100};
+  int solve_iterations = 5;
+  TimeNs degraded_after_ns = 500 * kNsPerMs;
+  // LOST: no accepted match for lost_after (a sparse stretch of road may go seconds without
+  // one while odometry holds the pose), or the position more uncertain than lost_sigma_m,
+  // or, after an initial pose, no match confirming it within initial_lost_after (the pose
+  // was wrong: relocalize at once).
+  TimeNs lost_after_ns = 5 * kNsPerSecond;
+  TimeNs initial_lost_after_ns = 1 * kNsPerSecond;
+  double lost_sigma_m = 1.0;
+  // Relocalization: all headings within a radius that starts here and grows by the factor
+  // after each failed revolution, up to the maximum; a match must score this much.
+  double relocalization_radius_m = 10.0;
+  double relocalization_growth = 1.5;
+  double relocalization_max_radius_m = 20.0;
+  // A global match must score this much, with at least relocalization_min_matched_points
+  // on structure, and its best distinct other peak may score at most
+  // relocalization_max_peak_ratio of it: a search in a repetitive corridor must not pick
+  // one of two lookalikes, and a sparse street's true pose scores low but stands out.
+  double relocalization_min_score = 0.1;
+  std::size_t relocalization_min_matched_points = 25;
+  double relocalization_max_peak_ratio = 0.85;
+  RelocalizationOptions relocalization;
+  int map_cache_tiles = 64;  // the prior map reader's LRU cache
+};
+
+Status ValidateOptions(const LocalizerOptions& options);
+
+// The estimate at one time: global_T_vehicle = L2G x local_T_vehicle.
+struct GlobalPose {
+  bool ok = false;  // false: no fix (initializing), or no odometry at that time
+  TimeNs time_ns = 0;
+  Se2 global_T_vehicle;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // (x, y, theta), se2.hpp's convention
+  LocalizerState state = LocalizerState::kInitializing;
+};
+
+// What one revolution did.
+struct RevolutionReport {
+  bool used = false;  // the grid was complete, had odometry, and a fix existed
+  LocalizerState state = LocalizerState::kInitializing;
+  bool relocalizing = false;     // the match was a global search
+  MatchStatus match = MatchStatus::kNoMap;
+  double score = 0.0;
+  Se2 match_pose;                // global_T_vehicle the match found (when it ran)
+  Eigen::Matrix3d match_covariance = Eigen::Matrix3d::Zero();  // ... as the score surface says
+  bool match_accepted = false;   // passed the score threshold and was not switched off
+  std::size_t points = 0;        // scan points matched
+  double match_s = 0.0;          // CPU time of the match (including a map window move)
+  double solve_s = 0.0;          // ... and of the graph solve
+};
+
+struct LocalizerStats {
+  std::uint64_t grids = 0;
+  std::uint64_t grids_without_odometry = 0;
+  std::uint64_t matches_accepted = 0;
+  std::uint64_t matches_rejected = 0;  // below the score, failed, or on the null hypothesis
+  std::uint64_t relocalizations = 0;   // global searches run
+  std::uint64_t relocalized = 0;       // ... that were accepted
+  std::uint64_t map_window_moves = 0;
+  std::uint64_t map_errors = 0;        // damaged tiles met while moving the window
+};
+
+class Localizer {
+ public:
+  // Takes the map; its reader's cache is set by map_cache_tiles at Open (the caller's).
+  static Result<Localizer> Create(maps::PriorMapReader map, const LocalizerOptions& options);
+
+  // The vehicle's global pose at `time_ns` with its uncertainty: from configuration, a
+  // persisted L2G, a client or GNSS. Takes effect at the next grid; a covariance wider than
+  // the tracking window starts a relocalization within three standard deviations.
+  void SetInitialPose(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen::Matrix3d& covariance);
+
+  // One revolution's grid, with the odometry that placed its fans.
+  RevolutionReport AddGrid(const maps::PublishedGrid& grid, const PoseHistory& odometry);
+
+  // global_T_vehicle at `time_ns` (odometry rate); not ok before the first fix or outside
+  // the odometry's window.
+  GlobalPose PoseAt(TimeNs time_ns, const PoseHistory& odometry) const;
+
+  LocalizerState state() const { return state_; }
+  const Se2& global_T_local() const { return global_T_local_; }
+  const LocalizerStats& stats() const { return stats_; }
+  const maps::PriorMapReader& map() const { return map_; }
+
+ private:
+  Localizer(maps::PriorMapReader map, const LocalizerOptions& options, MapWindow window,
+            graph::SlidingWindowGraph graph);
+
+  void StartFromInitialPose(TimeNs time_ns, const Se2& local_T_vehicle, const PoseHistory& odometry);
+  void ExtractScan(const maps::ClassGrid& grid);
+  MatchResult MatchScan(const Se2& prediction, TimeNs time_ns, const PoseHistory& odometry, RevolutionReport& report);
+  SearchWindow TrackingWindow(TimeNs time_ns, const PoseHistory& odometry) const;
+  bool Accepts(const MatchResult& match) const;
+  void Track(TimeNs time_ns, const Se2& local_T_vehicle, const MatchResult& match, const PoseHistory& odometry,
+             RevolutionReport& report);
+  void Restart(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen::Matrix3d& information);
+  void UpdateState(TimeNs time_ns);
+  Eigen::Matrix3d MatchInformation(const Eigen::Matrix3d& covariance) const;
+  Eigen::Matrix3d OdometryInformation(const RelativeMotion& motion) const;
+
+  LocalizerOptions options_;
+  maps::PriorMapReader map_;
+  MapWindow window_;
+  CorrelativeMatcher matcher_;
+  ScanPoints scan_;
+  graph::SlidingWindowGraph graph_;
+  LocalizerStats stats_;
+
+  LocalizerState state_ = LocalizerState::kInitializing;
+  bool has_initial_pose_ = false;  // set, not yet applied
+  TimeNs initial_time_ns_ = 0;
+  Se2 initial_pose_;
+  Eigen::Matrix3d initial_covariance_ = Eigen::Matrix3d::Identity();
+
+  bool has_fix_ = false;  // the graph holds a node
+  Se2 global_T_local_;
+  TimeNs last_node_ns_ = 0;
+  Se2 last_node_pose_;                                    // global_T_vehicle, solved
+  Eigen::Matrix3d last_node_covariance_ = Eigen::Matrix3d::Zero();
+  TimeNs last_accepted_ns_ = 0;
+  bool ever_localized_ = false;  // a match was accepted since the last initial pose
+  bool relocalizing_ = false;
+  double relocalization_radius_m_ = 0.0;
+};
+
+}  // namespace flat2d::localization
