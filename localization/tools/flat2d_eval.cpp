@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -14,8 +15,10 @@
 #include "localization/evaluation/relations.hpp"
 #include "localization/evaluation/trajectory_error.hpp"
 #include "localization/evaluation/trajectory_file.hpp"
+#include "localization/tools/trajectory_plots.hpp"
 #include "maps/grid/class_grid_file.hpp"
 #include "maps/grid/structure_comparison.hpp"
+#include "maps/render/png_writer.hpp"
 #include "maps/tools/cli_args.hpp"
 
 namespace {
@@ -28,6 +31,7 @@ constexpr const char* kUsage = R"(usage:
   flat2d-eval grid --truth A.yaml --grid B.yaml [--tolerance CELLS] [--observed-radius CELLS] [--json]
   flat2d-eval relations --trajectory EST.tum (--relations FILE | --reference REF.tum) [options] [--json]
   flat2d-eval traj --truth T.tum --est E.tum [--align] [--max-gap S] [--json]
+                   [--plot STEM [--map MAP.yaml] [--odometry O.tum]]
 
 grid: slammable cells of grid B against the occupied (slammable) cells of truth A, both
 map_server YAML + PGM files in one world frame (flat2d-sim's truth_map.yaml, flat2d-grid's
@@ -60,6 +64,14 @@ percentiles (50, 95, 99) of the position error and of its longitudinal and later
 0.025 rad, its worst and its histogram in 0.005 rad bins.
   --align                  after the best rigid 2D alignment (Horn), for an estimate in
                            another frame (raw odometry, a map not anchored to the truth)
+  --plot STEM              write STEM_heading.png (the heading error's histogram: a bar per
+                           0.005 rad bin, full height 100 %, the 0.02 and 0.025 rad edges in
+                           red and orange, everything beyond 0.1 rad in the grey last bar) and
+                           STEM_trajectory.png (truth green, estimate blue, in the truth's
+                           frame)
+  --map MAP.yaml           ... the trajectories over this class grid (flat2d-map render)
+  --odometry O.tum         ... and this open-loop odometry in red (flat2d-localize
+                           --odometry-out), as given
   --trajectory, --reference  the same as --est, --truth
 )";
 
@@ -185,8 +197,36 @@ std::string HistogramJson(const localization::evaluation::TrajectoryError& e) {
   return text;
 }
 
+void WritePngOrFail(const maps::RgbImage& image, const std::string& path) {
+  if (Status written = maps::WritePng(image, path); !written.ok()) Fail(2, written.error().message);
+}
+
+// The --plot pictures; the estimate moved into the truth's frame when aligned.
+void WriteTrajectoryPlots(const std::string& stem, const localization::evaluation::TrajectoryError& e,
+                          const std::vector<localization::evaluation::TimedPose>& truth,
+                          std::vector<localization::evaluation::TimedPose> estimate,
+                          const std::optional<std::string>& map_path, const std::optional<std::string>& odometry_path) {
+  WritePngOrFail(localization::PlotHeadingHistogram(e), stem + "_heading.png");
+  for (auto& p : estimate) p.pose = e.reference_T_estimate * p.pose;
+  std::optional<maps::ClassGrid> map;
+  if (map_path) {
+    auto read = maps::ReadClassGrid(*map_path);
+    if (!read.ok()) Fail(2, read.error().message);
+    map = std::move(*read);
+  }
+  std::vector<localization::evaluation::TimedPose> odometry;
+  if (odometry_path) odometry = ReadTrajectoryOrFail(*odometry_path);
+  localization::TrajectoryPlot plot;
+  plot.truth = &truth;
+  plot.estimate = &estimate;
+  plot.odometry = odometry_path ? &odometry : nullptr;
+  plot.map = map ? &*map : nullptr;
+  WritePngOrFail(localization::PlotTrajectories(plot), stem + "_trajectory.png");
+}
+
 int EvalTraj(int argc, char** argv) {
   std::string trajectory_path, reference_path;
+  std::optional<std::string> plot_stem, map_path, odometry_path;
   bool align = false, json = false;
   double max_gap = 1.0;
   for (int i = 0; i < argc; ++i) {
@@ -198,12 +238,18 @@ int EvalTraj(int argc, char** argv) {
     else if (arg == "--no-align") align = false;
     else if (arg == "--max-gap") max_gap = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--json") json = true;
+    else if (arg == "--plot") plot_stem = value();
+    else if (arg == "--map") map_path = value();
+    else if (arg == "--odometry") odometry_path = value();
     else Fail(1, "traj: unknown argument " + std::string(arg) + "\n" + kUsage);
   }
   if (trajectory_path.empty() || reference_path.empty()) Fail(1, std::string("traj needs --truth and --est\n") + kUsage);
-  const auto e = localization::evaluation::EvaluateTrajectory(ReadTrajectoryOrFail(trajectory_path),
-                                                              ReadTrajectoryOrFail(reference_path), align, max_gap);
+  if ((map_path || odometry_path) && !plot_stem) Fail(1, "traj: --map and --odometry go with --plot");
+  const auto estimate = ReadTrajectoryOrFail(trajectory_path);
+  const auto truth = ReadTrajectoryOrFail(reference_path);
+  const auto e = localization::evaluation::EvaluateTrajectory(estimate, truth, align, max_gap);
   if (e.poses == 0) Fail(2, "the estimate covers none of the truth's times");
+  if (plot_stem) WriteTrajectoryPlots(*plot_stem, e, truth, estimate, map_path, odometry_path);
   if (json) {
     std::printf("{\"poses\":%zu,\"unmatched\":%zu,\"ate_rmse_m\":%.6f,\"ate_mean_m\":%.6f,\"ate_median_m\":%.6f,"
                 "\"ate_max_m\":%.6f,\"rotation_rmse_deg\":%.6f,\"aligned\":%s,%s,%s,%s,"
