@@ -76,6 +76,7 @@ Status ValidateOptions(const LocalizerOptions& options) {
     return MakeError("odometry_sigma_per_m and odometry_sigma_rad_per_m must be >= 0");
   }
   if (options.solve_iterations < 1) return MakeError("solve_iterations must be >= 1");
+  if (options.relocalization_confirmations < 0) return MakeError("relocalization_confirmations must be >= 0");
   if (options.degraded_after_ns <= 0 || options.lost_after_ns < options.degraded_after_ns ||
       options.initial_lost_after_ns <= 0) {
     return MakeError("need 0 < degraded_after <= lost_after and initial_lost_after > 0");
@@ -203,9 +204,13 @@ MatchResult Localizer::MatchScan(const Se2& prediction, TimeNs time_ns, const Po
                                  RevolutionReport& report) {
   report.points = scan_.size();
   report.relocalizing = relocalizing_;
-  // A global search wants the window centred on its guess; tracking moves it every recentre_m.
+  // A global search wants the mosaic centred on its guess; tracking moves it every
+  // recentre_m, or follows the nearest viewpoint.
+  const bool viewpoints = options_.match_viewpoints && !relocalizing_ && map_.viewpoint_count() > 0;
   const double max_offset = relocalizing_ ? 1.0 : options_.map_window.recentre_m;
-  const Result<bool> moved = window_.Cover(map_, prediction.translation(), max_offset);
+  const bool leaving_viewpoints = !viewpoints && window_.viewpoint() >= 0;
+  const Result<bool> moved = viewpoints ? window_.CoverWithViewpoint(map_, prediction.translation())
+                                        : window_.Cover(map_, prediction.translation(), leaving_viewpoints ? 0.0 : max_offset);
   MatchResult result;
   if (!moved.ok()) {
     ++stats_.map_errors;
@@ -276,6 +281,7 @@ void Localizer::Track(TimeNs time_ns, const Se2& local_T_vehicle, const MatchRes
     Restart(time_ns, match.map_T_vehicle, MatchInformation(match.covariance));
     global_T_local_ = last_node_pose_ * local_T_vehicle.Inverse();
     relocalizing_ = false;
+    confirmations_needed_ = options_.relocalization_confirmations;
     last_accepted_ns_ = time_ns;
     ever_localized_ = true;
     report.match_accepted = true;
@@ -308,8 +314,16 @@ void Localizer::Track(TimeNs time_ns, const Se2& local_T_vehicle, const MatchRes
     ++stats_.matches_accepted;
     last_accepted_ns_ = time_ns;
     ever_localized_ = true;
+    if (confirmations_needed_ > 0) --confirmations_needed_;
   } else {
     ++stats_.matches_rejected;
+    if (confirmations_needed_ > 0) {  // the global match was not confirmed: search on
+      ++stats_.relocalizations_refuted;
+      confirmations_needed_ = 0;
+      relocalizing_ = true;
+      relocalization_radius_m_ = std::min(relocalization_radius_m_ * options_.relocalization_growth,
+                                          options_.relocalization_max_radius_m);
+    }
   }
 }
 
@@ -327,7 +341,7 @@ void Localizer::Restart(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen
 }
 
 void Localizer::UpdateState(TimeNs time_ns) {
-  if (relocalizing_) {
+  if (relocalizing_ || confirmations_needed_ > 0) {
     state_ = LocalizerState::kLost;
     return;
   }
@@ -336,7 +350,13 @@ void Localizer::UpdateState(TimeNs time_ns) {
   if (since_match > lost_after || PositionSigma(last_node_covariance_) > options_.lost_sigma_m) {
     state_ = LocalizerState::kLost;
     relocalizing_ = true;
-    relocalization_radius_m_ = options_.relocalization_radius_m;
+    // Lost after tracking, the vehicle is where odometry says within its uncertainty: search
+    // three standard deviations, not the whole radius a doubtful initial pose gets, so a
+    // lookalike farther away cannot win.
+    relocalization_radius_m_ =
+        ever_localized_ ? std::clamp(3.0 * PositionSigma(last_node_covariance_), options_.max_tracking_window_m,
+                                     options_.relocalization_radius_m)
+                        : options_.relocalization_radius_m;
   } else if (since_match > options_.degraded_after_ns) {
     state_ = ever_localized_ ? LocalizerState::kDegraded : LocalizerState::kInitializing;
   } else {

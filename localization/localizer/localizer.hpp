@@ -5,7 +5,7 @@
 //
 // Per revolution (AddGrid), with the grid's reference pose local_T_vehicle and time t:
 //  1. predict global_T_vehicle = L2G x local_T_vehicle, and move the map window there when
-//     the vehicle has left its centre (map_window.hpp);
+//     the vehicle has left its centre, or to the nearest viewpoint sub-map (map_window.hpp);
 //  2. match the grid's slammable cells (vehicle frame, within point_range_m, decimated)
 //     against the window: tracking mode around the prediction, or, when lost, a global
 //     relocalization around it whose radius widens after every failure;
@@ -16,7 +16,9 @@
 //     L2G = global_T_vehicle(t) x local_T_vehicle(t)^-1 with the newest node's covariance;
 //  5. update the state (localizer_state.hpp): LOCALIZED while matches are accepted,
 //     DEGRADED after degraded_after without one, LOST after lost_after or when the position
-//     is more uncertain than lost_sigma_m.
+//     is more uncertain than lost_sigma_m. A global match restarts the window from its pose
+//     but stays on probation (LOST) until relocalization_confirmations tracking matches in a
+//     row accept it; the first rejection resumes the search.
 // Between revolutions PoseAt composes the newest node with the odometry since its time, so
 // poses come at odometry rate with covariance from both.
 //
@@ -43,6 +45,10 @@ namespace flat2d::localization {
 
 struct LocalizerOptions {
   MapWindowOptions map_window;
+  // Track against the viewpoint sub-map nearest the prediction (thesis 7.3.2: structure
+  // hidden from the mapping drive's pose cannot attract the match) instead of the mosaic.
+  // Global relocalization always searches the mosaic. Without viewpoints in the map: the mosaic.
+  bool match_viewpoints = false;
   double point_range_m = 35.0;       // slammable cells farther away are not matched (a 50 m grid's corners)
   double decimation_m = 0.1;         // one point per square this size
   std::size_t max_grid_points = 60'000;  // slammable cells read from one grid
@@ -82,8 +88,9 @@ struct LocalizerOptions {
   TimeNs lost_after_ns = 5 * kNsPerSecond;
   TimeNs initial_lost_after_ns = 1 * kNsPerSecond;
   double lost_sigma_m = 1.0;
-  // Relocalization: all headings within a radius that starts here and grows by the factor
-  // after each failed revolution, up to the maximum; a match must score this much.
+  // Relocalization: all headings within a radius that starts here (after tracking was
+  // lost: at three standard deviations of the position, at least max_tracking_window_m)
+  // and grows by the factor after each failed revolution, up to the maximum.
   double relocalization_radius_m = 10.0;
   double relocalization_growth = 1.5;
   double relocalization_max_radius_m = 20.0;
@@ -94,6 +101,9 @@ struct LocalizerOptions {
   double relocalization_min_score = 0.1;
   std::size_t relocalization_min_matched_points = 25;
   double relocalization_max_peak_ratio = 0.85;
+  // A global match is on probation: the state stays LOST until this many tracking matches
+  // in a row are accepted after it, and the first rejected one resumes the search.
+  int relocalization_confirmations = 3;
   RelocalizationOptions relocalization;
   int map_cache_tiles = 64;  // the prior map reader's LRU cache
 };
@@ -131,6 +141,7 @@ struct LocalizerStats {
   std::uint64_t matches_rejected = 0;  // below the score, failed, or on the null hypothesis
   std::uint64_t relocalizations = 0;   // global searches run
   std::uint64_t relocalized = 0;       // ... that were accepted
+  std::uint64_t relocalizations_refuted = 0;  // ... and then not confirmed by tracking
   std::uint64_t map_window_moves = 0;
   std::uint64_t map_errors = 0;        // damaged tiles met while moving the window
 };
@@ -195,6 +206,7 @@ class Localizer {
   TimeNs last_accepted_ns_ = 0;
   bool ever_localized_ = false;  // a match was accepted since the last initial pose
   bool relocalizing_ = false;
+  int confirmations_needed_ = 0;  // tracking matches still to accept after a global match
   double relocalization_radius_m_ = 0.0;
 };
 

@@ -19,6 +19,7 @@ Result<LocalizerOptions> LocalizerOptionsFrom(const LocalizerConfig& c) {
     if (c.map_cache_tiles() < 1) return MakeError("map_cache_tiles must be >= 1");
     o.map_cache_tiles = c.map_cache_tiles();
   }
+  if (c.has_match_viewpoints()) o.match_viewpoints = c.match_viewpoints();
   if (c.has_point_range_m()) o.point_range_m = c.point_range_m();
   if (c.has_decimation_m()) o.decimation_m = c.decimation_m();
   if (c.has_max_scan_points()) {
@@ -59,6 +60,7 @@ Result<LocalizerOptions> LocalizerOptionsFrom(const LocalizerConfig& c) {
   if (c.has_relocalization_growth()) o.relocalization_growth = c.relocalization_growth();
   if (c.has_relocalization_max_radius_m()) o.relocalization_max_radius_m = c.relocalization_max_radius_m();
   if (c.has_relocalization_min_score()) o.relocalization_min_score = c.relocalization_min_score();
+  if (c.has_relocalization_confirmations()) o.relocalization_confirmations = c.relocalization_confirmations();
   if (c.has_relocalization_max_peak_ratio()) o.relocalization_max_peak_ratio = c.relocalization_max_peak_ratio();
   o.max_grid_points = std::max(o.max_grid_points, o.max_scan_points);
   if (Status valid = ValidateOptions(o); !valid.ok()) return valid.error();

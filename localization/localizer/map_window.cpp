@@ -39,6 +39,49 @@ Result<bool> MapWindow::Cover(maps::PriorMapReader& map, const Eigen::Vector2d& 
   return true;
 }
 
+Result<bool> MapWindow::CoverWithViewpoint(maps::PriorMapReader& map, const Eigen::Vector2d& position,
+                                           double switch_margin_m) {
+  const auto& viewpoints = map.header().viewpoints();
+  int nearest = -1;
+  double nearest_m = 0.0, current_m = 0.0;
+  for (int i = 0; i < viewpoints.size(); ++i) {
+    const double d = (Eigen::Vector2d(viewpoints[i].x_m(), viewpoints[i].y_m()) - position).norm();
+    if (nearest < 0 || d < nearest_m) {
+      nearest = i;
+      nearest_m = d;
+    }
+    if (i == viewpoint_) current_m = d;
+  }
+  if (nearest < 0) return false;
+  if (filled_ && viewpoint_ >= 0 && (nearest == viewpoint_ || nearest_m > current_m - switch_margin_m)) return false;
+  ++moves_;
+  if (Status filled = FillViewpoint(map, nearest); !filled.ok()) return filled.error();
+  return true;
+}
+
+Status MapWindow::FillViewpoint(maps::PriorMapReader& map, int index) {
+  const auto& header = map.header();
+  const maps::Viewpoint& v = header.viewpoints(index);
+  const Eigen::Vector2d map_origin(header.origin_x_m(), header.origin_y_m());
+  grid_.Reset(map_origin + header.resolution_m() * Eigen::Vector2d(v.col(), v.row()));
+  filled_ = false;
+  viewpoint_ = -1;
+  auto cells = map.ViewpointCells(index);
+  if (!cells.ok()) return cells.error();
+  constexpr auto kSlammable = static_cast<std::uint8_t>(maps::CellClass::kSlammable);
+  const int width = std::min(v.width(), grid_.width()), height = std::min(v.height(), grid_.height());
+  for (int row = 0; row < height; ++row) {
+    const std::uint8_t* block_row = cells->data() + static_cast<std::size_t>(row) * v.width();
+    for (int col = 0; col < width; ++col) {
+      if (block_row[col] == kSlammable) grid_.SetOccupied(col, row);
+    }
+  }
+  centre_ = Eigen::Vector2d(v.x_m(), v.y_m());
+  viewpoint_ = index;
+  filled_ = true;
+  return Status::Ok();
+}
+
 Status MapWindow::Fill(maps::PriorMapReader& map, const Eigen::Vector2d& centre) {
   const auto& header = map.header();
   const double resolution = header.resolution_m();
@@ -50,6 +93,7 @@ Status MapWindow::Fill(maps::PriorMapReader& map, const Eigen::Vector2d& centre)
   const int first_row = static_cast<int>(first.y());
   grid_.Reset(map_origin + resolution * Eigen::Vector2d(first_col, first_row));
   filled_ = false;
+  viewpoint_ = -1;
   centre_ = centre;
 
   const int n = header.tile_cells();

@@ -37,6 +37,14 @@ class MapWindow {
   // a damaged tile, and the window is then moved again at the next call.
   Result<bool> Cover(maps::PriorMapReader& map, const Eigen::Vector2d& position);
   Result<bool> Cover(maps::PriorMapReader& map, const Eigen::Vector2d& position, double max_offset_m);
+  // Viewpoint mode (thesis 7.3.2): the window holds the viewpoint sub-map whose historic
+  // pose is nearest `position` (what the mapping drive saw from there), clipped to the
+  // window; it changes when another viewpoint is nearer by switch_margin_m. Returns whether
+  // it changed; false without viewpoints (the window stays as it was). An error names a
+  // damaged viewpoint.
+  Result<bool> CoverWithViewpoint(maps::PriorMapReader& map, const Eigen::Vector2d& position,
+                                  double switch_margin_m = 1.0);
+  int viewpoint() const { return viewpoint_; }  // -1: the mosaic
 
   const MatchGrid& grid() const { return grid_; }
   bool filled() const { return filled_; }
@@ -46,12 +54,14 @@ class MapWindow {
  private:
   MapWindow(const MapWindowOptions& options, const GridGeometry& geometry);
   Status Fill(maps::PriorMapReader& map, const Eigen::Vector2d& centre);
+  Status FillViewpoint(maps::PriorMapReader& map, int index);
 
   MapWindowOptions options_;
   MatchGrid grid_;
   bool filled_ = false;
   Eigen::Vector2d centre_ = Eigen::Vector2d::Zero();
   std::uint64_t moves_ = 0;
+  int viewpoint_ = -1;
 };
 
 }  // namespace flat2d::localization

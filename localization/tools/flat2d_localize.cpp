@@ -151,9 +151,11 @@ void PrintSummary(const localization::LocalizeRunResult& result) {
   const localization::LocalizerStats& s = result.stats;
   std::printf("{\"revolutions\": %zu, \"revolutions_used\": %d, \"poses\": %zu", result.revolutions.size(), used,
               result.estimate.size());
-  std::printf(", \"matches_accepted\": %llu, \"matches_rejected\": %llu, \"relocalizations\": %llu, \"relocalized\": %llu",
+  std::printf(", \"matches_accepted\": %llu, \"matches_rejected\": %llu, \"relocalizations\": %llu, \"relocalized\": %llu"
+              ", \"relocalizations_refuted\": %llu",
               static_cast<unsigned long long>(s.matches_accepted), static_cast<unsigned long long>(s.matches_rejected),
-              static_cast<unsigned long long>(s.relocalizations), static_cast<unsigned long long>(s.relocalized));
+              static_cast<unsigned long long>(s.relocalizations), static_cast<unsigned long long>(s.relocalized),
+              static_cast<unsigned long long>(s.relocalizations_refuted));
   std::printf(", \"map_window_moves\": %llu, \"map_errors\": %llu, \"grids_without_odometry\": %llu",
               static_cast<unsigned long long>(s.map_window_moves), static_cast<unsigned long long>(s.map_errors),
               static_cast<unsigned long long>(s.grids_without_odometry));

@@ -24,6 +24,7 @@ TEST(LocalizerConfig, TheShippedFileHoldsTheDefaults) {
   EXPECT_EQ(shipped->map_window.side_m, defaults.map_window.side_m);
   EXPECT_EQ(shipped->map_window.recentre_m, defaults.map_window.recentre_m);
   EXPECT_EQ(shipped->map_cache_tiles, defaults.map_cache_tiles);
+  EXPECT_EQ(shipped->match_viewpoints, defaults.match_viewpoints);
   EXPECT_EQ(shipped->point_range_m, defaults.point_range_m);
   EXPECT_EQ(shipped->decimation_m, defaults.decimation_m);
   EXPECT_EQ(shipped->max_scan_points, defaults.max_scan_points);
@@ -50,6 +51,7 @@ TEST(LocalizerConfig, TheShippedFileHoldsTheDefaults) {
   EXPECT_EQ(shipped->max_tracking_window_m, defaults.max_tracking_window_m);
   EXPECT_EQ(shipped->initial_lost_after_ns, defaults.initial_lost_after_ns);
   EXPECT_EQ(shipped->confirm_min_score, defaults.confirm_min_score);
+  EXPECT_EQ(shipped->relocalization_confirmations, defaults.relocalization_confirmations);
   EXPECT_EQ(shipped->relocalization_min_matched_points, defaults.relocalization_min_matched_points);
 }
 

@@ -192,7 +192,11 @@ TEST_F(LocalizerTest, AWideInitialPoseStartsWithAGlobalSearch) {
   EXPECT_TRUE(first.relocalizing);
   EXPECT_TRUE(first.match_accepted);
   EXPECT_EQ(localizer.stats().relocalized, 1u);
-  for (int k = 1; k < 10; ++k) EXPECT_EQ(Step(localizer, k).state, LocalizerState::kLocalized) << k;
+  EXPECT_EQ(first.state, LocalizerState::kLost);  // on probation: three tracking matches confirm it
+  for (int k = 1; k < 10; ++k) {
+    EXPECT_EQ(Step(localizer, k).state, k < 3 ? LocalizerState::kLost : LocalizerState::kLocalized) << k;
+  }
+  EXPECT_EQ(localizer.stats().relocalizations_refuted, 0u);
 }
 
 TEST(LocalizerOptions, RejectsInconsistentValues) {

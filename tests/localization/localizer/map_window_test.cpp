@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "maps/prior_map/prior_map_file.hpp"
+#include "maps/prior_map/viewpoint.hpp"
 
 namespace flat2d::localization {
 namespace {
@@ -109,6 +110,53 @@ TEST_F(MapWindowTest, ADamagedTileIsAnErrorNamingIt) {
   EXPECT_NE(moved.error().message.find("damaged.f2m"), std::string::npos) << moved.error().message;
   EXPECT_NE(moved.error().message.find("tile"), std::string::npos) << moved.error().message;
   EXPECT_FALSE(window->filled());
+}
+
+// Viewpoint mode: the nearest viewpoint's visible cells, switched only when another is
+// nearer by the margin; a map without viewpoints leaves the window as it is.
+TEST_F(MapWindowTest, FollowsTheNearestViewpoint) {
+  const auto path = Scratch("viewpoints");
+  std::vector<maps::ViewpointGrid> viewpoints;
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.0, 50.0), Eigen::Vector2d(10.0, 50.0)}) {
+    viewpoints.push_back({p.x(), p.y(), 0.0, 0.0, maps::VisibleFrom(grid_, p, 8.0)});
+  }
+  maps::PriorMapWriteOptions options;
+  options.tile_cells = 64;
+  options.created_utc = "2026-12-01T00:00:00Z";
+  ASSERT_TRUE(maps::WritePriorMap(grid_, path, options, viewpoints).ok());
+  auto map = maps::PriorMapReader::Open(path, 8);
+  ASSERT_TRUE(map.ok()) << map.error().message;
+  auto window = MapWindow::Create(*map, {.side_m = 20.0, .recentre_m = 4.0});
+  ASSERT_TRUE(window.ok());
+
+  EXPECT_TRUE(*window->CoverWithViewpoint(*map, {1.0, 49.0}));
+  EXPECT_EQ(window->viewpoint(), 0);
+  // Cell for cell the viewpoint's slammable cells, nothing else.
+  const maps::ClassGrid& visible = viewpoints[0].cells;
+  const GridGeometry& g = window->grid().geometry();
+  std::size_t expected = 0;
+  for (int row = 0; row < visible.geometry().height; ++row) {
+    for (int col = 0; col < visible.geometry().width; ++col) {
+      if (visible.at({col, row}) != maps::CellClass::kSlammable) continue;
+      ++expected;
+      const Eigen::Vector2d centre = visible.geometry().CellCenter({col, row});
+      const Eigen::Vector2i cell = g.CellOf(centre);
+      EXPECT_TRUE(window->grid().Occupied(cell.x(), cell.y())) << col << ", " << row;
+    }
+  }
+  EXPECT_GT(expected, 10u);  // rays stop at the first slammable cell: a quarter of the cells are
+  EXPECT_EQ(window->grid().OccupiedCount(), expected);
+
+  EXPECT_FALSE(*window->CoverWithViewpoint(*map, {5.4, 50.0}));  // nearer the second, by < 1 m
+  EXPECT_TRUE(*window->CoverWithViewpoint(*map, {6.0, 50.0}));
+  EXPECT_EQ(window->viewpoint(), 1);
+  EXPECT_TRUE(*window->Cover(*map, {6.0, 50.0}, 0.0));  // back to the mosaic
+  EXPECT_EQ(window->viewpoint(), -1);
+  std::filesystem::remove(path);
+
+  auto plain = maps::PriorMapReader::Open(path_, 8);  // the fixture's map has no viewpoints
+  ASSERT_TRUE(plain.ok());
+  EXPECT_FALSE(*window->CoverWithViewpoint(*plain, {6.0, 50.0}));
 }
 
 TEST(MapWindowOptions, RejectsAWindowItCannotRecentreIn) {

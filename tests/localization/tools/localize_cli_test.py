@@ -65,7 +65,8 @@ class LocalizeDrive(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         summary = json.loads(result.stdout)
         for key in ("revolutions", "revolutions_used", "poses", "matches_accepted", "matches_rejected",
-                    "relocalizations", "relocalized", "map_window_moves", "first_localized_after_s", "states",
+                    "relocalizations", "relocalized", "relocalizations_refuted", "map_window_moves",
+                    "first_localized_after_s", "states",
                     "match_ms_p50", "match_ms_p99", "solve_ms_p50", "solve_ms_p99", "cpu_ms_p50", "cpu_ms_p99"):
             self.assertIn(key, summary)
         self.assertGreater(summary["revolutions_used"], 200)  # 22 s at 10 Hz
