@@ -141,7 +141,7 @@ RevolutionReport Localizer::AddGrid(const maps::PublishedGrid& grid, const PoseH
   const MatchResult match = MatchScan(prediction, time_ns, odometry, report);
   const double matched = ThreadCpuSeconds();
   report.match_s = matched - start;
-  Track(time_ns, local_T_vehicle, match, odometry, report);
+  Track(time_ns, local_T_vehicle, prediction, match, odometry, report);
   report.solve_s = ThreadCpuSeconds() - matched;
   UpdateState(time_ns);
   report.state = state_;
@@ -236,6 +236,11 @@ MatchResult Localizer::MatchScan(const Se2& prediction, TimeNs time_ns, const Po
   return result;
 }
 
+void Localizer::WidenRelocalization() {
+  relocalization_radius_m_ =
+      std::min(relocalization_radius_m_ * options_.relocalization_growth, options_.relocalization_max_radius_m);
+}
+
 bool Localizer::Accepts(const MatchResult& match) const {
   if (!match.ok()) return false;
   const double matched_points = match.score * static_cast<double>(match.points);
@@ -265,14 +270,13 @@ Eigen::Matrix3d Localizer::OdometryInformation(const RelativeMotion& motion) con
   return 0.5 * (information + information.transpose());
 }
 
-void Localizer::Track(TimeNs time_ns, const Se2& local_T_vehicle, const MatchResult& match,
+void Localizer::Track(TimeNs time_ns, const Se2& local_T_vehicle, const Se2& prediction, const MatchResult& match,
                       const PoseHistory& odometry, RevolutionReport& report) {
   const bool passed = Accepts(match);
   if (relocalizing_) {
     if (!passed) {
       ++stats_.matches_rejected;
-      relocalization_radius_m_ = std::min(relocalization_radius_m_ * options_.relocalization_growth,
-                                          options_.relocalization_max_radius_m);
+      WidenRelocalization();
       return;
     }
     // A global match replaces the window: the poses before it were wrong.
@@ -288,7 +292,6 @@ void Localizer::Track(TimeNs time_ns, const Se2& local_T_vehicle, const MatchRes
     return;
   }
 
-  const Se2 prediction = global_T_local_ * local_T_vehicle;
   const RelativeMotion motion = odometry.Between(last_node_ns_, time_ns);
   const graph::NodeId previous = graph_.newest_id();
   const Result<graph::NodeId> node = graph_.AddNode(time_ns, passed ? match.map_T_vehicle : prediction);
@@ -321,8 +324,7 @@ void Localizer::Track(TimeNs time_ns, const Se2& local_T_vehicle, const MatchRes
       ++stats_.relocalizations_refuted;
       confirmations_needed_ = 0;
       relocalizing_ = true;
-      relocalization_radius_m_ = std::min(relocalization_radius_m_ * options_.relocalization_growth,
-                                          options_.relocalization_max_radius_m);
+      WidenRelocalization();
     }
   }
 }

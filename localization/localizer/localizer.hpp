@@ -177,8 +177,9 @@ class Localizer {
   MatchResult MatchScan(const Se2& prediction, TimeNs time_ns, const PoseHistory& odometry, RevolutionReport& report);
   SearchWindow TrackingWindow(TimeNs time_ns, const PoseHistory& odometry) const;
   bool Accepts(const MatchResult& match) const;
-  void Track(TimeNs time_ns, const Se2& local_T_vehicle, const MatchResult& match, const PoseHistory& odometry,
-             RevolutionReport& report);
+  void WidenRelocalization();  // the next global search's radius, after a failed or refuted one
+  void Track(TimeNs time_ns, const Se2& local_T_vehicle, const Se2& prediction, const MatchResult& match,
+             const PoseHistory& odometry, RevolutionReport& report);
   void Restart(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen::Matrix3d& information);
   void UpdateState(TimeNs time_ns);
   Eigen::Matrix3d MatchInformation(const Eigen::Matrix3d& covariance) const;
