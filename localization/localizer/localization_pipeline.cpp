@@ -37,7 +37,10 @@ LocalizationPipeline::LocalizationPipeline(CanOdometry odometry, Localizer local
           options.stream, [this](const hal::velodyne::Revolution& revolution) { OnRevolution(revolution); })) {}
 
 std::optional<DeadReckoningUpdate> LocalizationPipeline::PushCan(const hal::can::CanFrame& frame) {
-  return odometry_.Push(frame);
+  std::optional<DeadReckoningUpdate> update = odometry_.Push(frame);
+  // The state follows the clock between revolutions too: a silent LiDAR degrades the fix.
+  if (update && update->new_sample()) localizer_.Tick(update->sample.time_ns);
+  return update;
 }
 
 void LocalizationPipeline::PushDatagram(const hal::net::UdpDatagram& datagram) { stream_->Push(datagram); }

@@ -54,7 +54,8 @@ class LocalizationPipeline {
                                                               maps::PriorMapReader map,
                                                               const LocalizationPipelineOptions& options);
 
-  // A CAN frame; returns the dead-reckoning update when it carried odometry.
+  // A CAN frame; returns the dead-reckoning update when it carried odometry (and then
+  // advances the localizer's state to the sample's time, Localizer::Tick).
   std::optional<DeadReckoningUpdate> PushCan(const hal::can::CanFrame& frame);
   void PushDatagram(const hal::net::UdpDatagram& datagram);
   // End of input: the stream's last partial revolution is dropped (it is not complete).

@@ -366,17 +366,35 @@ void Localizer::UpdateState(TimeNs time_ns) {
   }
 }
 
-GlobalPose Localizer::PoseAt(TimeNs time_ns, const PoseHistory& odometry) const {
+GlobalPose ComposeGlobalPose(const LocalizationFix& fix, const PoseHistory& odometry, TimeNs time_ns) {
   GlobalPose pose;
   pose.time_ns = time_ns;
-  pose.state = state_;
-  if (!has_fix_) return pose;
-  const RelativeMotion motion = odometry.Between(last_node_ns_, time_ns);
+  pose.state = fix.state;
+  if (!fix.has_fix) return pose;
+  const RelativeMotion motion = odometry.Between(fix.node_ns, time_ns);
   if (!motion.ok()) return pose;
   pose.ok = true;
-  pose.global_T_vehicle = last_node_pose_ * motion.a_T_b;
-  pose.covariance = ComposeCovariance(last_node_pose_, last_node_covariance_, motion.a_T_b, motion.covariance);
+  pose.global_T_vehicle = fix.node_pose * motion.a_T_b;
+  pose.covariance = ComposeCovariance(fix.node_pose, fix.node_covariance, motion.a_T_b, motion.covariance);
   return pose;
+}
+
+GlobalPose Localizer::PoseAt(TimeNs time_ns, const PoseHistory& odometry) const {
+  return ComposeGlobalPose(fix(), odometry, time_ns);
+}
+
+void Localizer::Tick(TimeNs time_ns) {
+  if (has_fix_ && time_ns > last_node_ns_) UpdateState(time_ns);
+}
+
+LocalizationFix Localizer::fix() const {
+  return {.has_fix = has_fix_,
+          .node_ns = last_node_ns_,
+          .node_pose = last_node_pose_,
+          .node_covariance = last_node_covariance_,
+          .global_T_local = global_T_local_,
+          .state = state_,
+          .last_accepted_ns = ever_localized_ ? last_accepted_ns_ : 0};
 }
 
 }  // namespace flat2d::localization

@@ -119,6 +119,22 @@ struct GlobalPose {
   LocalizerState state = LocalizerState::kInitializing;
 };
 
+// What PoseAt needs from the localizer, as a value another thread can hold: the daemon's
+// API thread serves poses from a copy of this and of the odometry history (daemon/service).
+struct LocalizationFix {
+  bool has_fix = false;  // the graph holds a node
+  TimeNs node_ns = 0;    // the newest node's time
+  Se2 node_pose;         // global_T_vehicle there, solved
+  Eigen::Matrix3d node_covariance = Eigen::Matrix3d::Zero();
+  Se2 global_T_local;    // L2G
+  LocalizerState state = LocalizerState::kInitializing;
+  TimeNs last_accepted_ns = 0;  // the newest accepted match's time; 0: none yet
+};
+
+// global_T_vehicle at `time_ns` = node pose x odometry from the node's time, its covariance
+// composed from both (se2.hpp E5); not ok without a fix or outside the odometry's window.
+GlobalPose ComposeGlobalPose(const LocalizationFix& fix, const PoseHistory& odometry, TimeNs time_ns);
+
 // What one revolution did.
 struct RevolutionReport {
   bool used = false;  // the grid was complete, had odometry, and a fix existed
@@ -163,9 +179,16 @@ class Localizer {
   // the odometry's window.
   GlobalPose PoseAt(TimeNs time_ns, const PoseHistory& odometry) const;
 
+  // Advances the state to `time_ns` without a grid (the LiDAR is silent): DEGRADED, then
+  // LOST, as the time since the last accepted match grows. Does nothing without a fix.
+  void Tick(TimeNs time_ns);
+
+  LocalizationFix fix() const;
+
   LocalizerState state() const { return state_; }
   const Se2& global_T_local() const { return global_T_local_; }
   const LocalizerStats& stats() const { return stats_; }
+  int graph_nodes() const { return graph_.size(); }
   const maps::PriorMapReader& map() const { return map_; }
 
  private:

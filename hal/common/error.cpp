@@ -1,7 +1,0 @@
-#include "hal/common/error.hpp"
-
-namespace flat2d {
-
-Error MakeError(std::string message) { return Error{std::move(message)}; }
-
-}  // namespace flat2d
