@@ -16,7 +16,7 @@ struct Error {
   std::string message;
 };
 
-Error MakeError(std::string message);
+inline Error MakeError(std::string message) { return Error{std::move(message)}; }
 
 template <typename T>
 class [[nodiscard]] Result {
