@@ -1,0 +1,52 @@
+// A candump log replayed on the LiDAR's clock: before each Velodyne data packet goes to the
+// pipeline, the log's frames up to the packet's time go first.
+//
+// A recorded CAN log has the recording's timestamps; the LiDAR's packets carry the sensor's
+// own time (microseconds past the hour, VLP-16 manual 9.3.1.6), which SensorClock resolves
+// against GPS or the host. Pacing the log by the packets, not by the wall clock, keeps the
+// two in step however the LiDAR is replayed (a pcap at any rate, or UDP from another
+// process), which is how a recorded drive is run through the live daemon.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "hal/can/candump_log.hpp"
+#include "hal/common/time.hpp"
+
+namespace flat2d::daemon {
+
+// The time of a 1206-byte Velodyne data packet, resolved into the hour nearest `reference_ns`;
+// 0 for any other payload.
+TimeNs DataPacketTime(std::span<const std::uint8_t> payload, TimeNs reference_ns);
+
+class CanLogFollower {
+ public:
+  explicit CanLogFollower(hal::can::CandumpReader log);
+
+  // Calls push(const hal::can::CanFrame&) for every frame not after the payload's packet
+  // time. Other payloads (position packets) release nothing.
+  template <typename Push>
+  void ReleaseUntil(std::span<const std::uint8_t> payload, Push&& push) {
+    if (!have_frame_) return;
+    const TimeNs packet_ns = DataPacketTime(payload, next_.time_ns);
+    if (packet_ns == 0) return;
+    while (have_frame_ && next_.time_ns <= packet_ns) {
+      push(next_);
+      ++released_;
+      have_frame_ = log_.Next(next_);
+    }
+  }
+
+  bool finished() const { return !have_frame_; }
+  std::uint64_t released() const { return released_; }
+  const hal::can::CandumpReaderStats& stats() const { return log_.stats(); }
+
+ private:
+  hal::can::CandumpReader log_;
+  hal::can::CanFrame next_;
+  bool have_frame_ = false;
+  std::uint64_t released_ = 0;
+};
+
+}  // namespace flat2d::daemon

@@ -1,0 +1,107 @@
+#include "daemon/service/sources.hpp"
+
+#include <chrono>
+#include <thread>
+
+#include "hal/net/ipv4.hpp"
+
+namespace flat2d::daemon {
+namespace {
+
+constexpr int kPollMs = 100;
+
+class UdpLidarThread final : public SourceThread {
+ public:
+  explicit UdpLidarThread(hal::net::UdpReceiver receiver) : receiver_(std::move(receiver)) {}
+  void Run(std::stop_token stop, InputQueue& queue) override {
+    while (!stop.stop_requested()) {
+      Beat();
+      for (const hal::net::UdpDatagram& datagram : receiver_.ReceiveBatch(kPollMs)) queue.PushDatagram(datagram);
+      drops_.store(receiver_.stats().kernel_drops + receiver_.stats().truncated, std::memory_order_relaxed);
+    }
+  }
+  std::uint64_t source_drops() const override { return drops_.load(std::memory_order_relaxed); }
+
+ private:
+  hal::net::UdpReceiver receiver_;
+  std::atomic<std::uint64_t> drops_{0};
+};
+
+// Sleeps in steps of at most kPollMs so the heartbeat keeps beating through long gaps.
+class CaptureReplayThread final : public SourceThread {
+ public:
+  CaptureReplayThread(std::unique_ptr<hal::net::DatagramSource> capture, double rate)
+      : capture_(std::move(capture)), rate_(rate) {}
+  void Run(std::stop_token stop, InputQueue& queue) override {
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point wall_start = Clock::now();
+    TimeNs first_ns = -1;
+    while (!stop.stop_requested()) {
+      Beat();
+      const std::optional<hal::net::UdpDatagram> datagram = capture_->Next();
+      if (!datagram) break;
+      if (first_ns < 0) first_ns = datagram->receive_time_ns;
+      const auto due = wall_start + std::chrono::nanoseconds(static_cast<TimeNs>(
+                                        static_cast<double>(datagram->receive_time_ns - first_ns) / rate_));
+      while (!stop.stop_requested() && Clock::now() < due) {
+        Beat();
+        std::this_thread::sleep_until(std::min(due, Clock::now() + std::chrono::milliseconds(kPollMs)));
+      }
+      queue.PushDatagram(*datagram);
+    }
+    Finish();
+  }
+  std::uint64_t source_drops() const override { return 0; }
+
+ private:
+  std::unique_ptr<hal::net::DatagramSource> capture_;
+  double rate_;
+};
+
+class SocketCanThread final : public SourceThread {
+ public:
+  explicit SocketCanThread(hal::can::SocketCanSource source) : source_(std::move(source)) {}
+  void Run(std::stop_token stop, InputQueue& queue) override {
+    hal::can::CanFrame frame;
+    while (!stop.stop_requested()) {
+      Beat();
+      if (source_.Next(frame)) queue.PushFrame(frame);
+      drops_.store(source_.stats().kernel_drops, std::memory_order_relaxed);
+    }
+  }
+  std::uint64_t source_drops() const override { return drops_.load(std::memory_order_relaxed); }
+
+ private:
+  hal::can::SocketCanSource source_;
+  std::atomic<std::uint64_t> drops_{0};
+};
+
+}  // namespace
+
+Result<std::unique_ptr<SourceThread>> OpenLidarSource(const LidarSource& config) {
+  if (config.has_pcap()) {
+    auto capture = hal::net::OpenCapture(config.pcap().path());
+    if (!capture.ok()) return capture.error();
+    return std::unique_ptr<SourceThread>(std::make_unique<CaptureReplayThread>(std::move(*capture), config.pcap().rate()));
+  }
+  hal::net::UdpReceiverOptions options;
+  options.bind_address = *hal::net::ParseIpv4(config.udp().bind_address());  // validated with the config
+  options.port = static_cast<std::uint16_t>(config.udp().port());
+  options.receive_buffer_bytes = static_cast<int>(config.udp().receive_buffer_bytes());
+  if (!config.udp().sensor_address().empty()) options.source_filter = hal::net::ParseIpv4(config.udp().sensor_address());
+  auto receiver = hal::net::UdpReceiver::Open(options);
+  if (!receiver.ok()) return receiver.error();
+  return std::unique_ptr<SourceThread>(std::make_unique<UdpLidarThread>(std::move(*receiver)));
+}
+
+Result<std::unique_ptr<SourceThread>> OpenCanSource(const CanSource& config) {
+  if (!config.has_socketcan()) return std::unique_ptr<SourceThread>();
+  hal::can::SocketCanOptions options;
+  options.interface_name = config.socketcan().interface();
+  options.timeout_ms = kPollMs;
+  auto source = hal::can::SocketCanSource::Open(options);
+  if (!source.ok()) return source.error();
+  return std::unique_ptr<SourceThread>(std::make_unique<SocketCanThread>(std::move(*source)));
+}
+
+}  // namespace flat2d::daemon

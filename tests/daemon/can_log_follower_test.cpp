@@ -1,0 +1,52 @@
+// A candump log replayed on the LiDAR's clock (daemon/service/can_log_follower.hpp).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "daemon/service/can_log_follower.hpp"
+
+namespace flat2d::daemon {
+namespace {
+
+// A 1206-byte data packet whose timestamp (offset 1200, little-endian) is `us_past_hour`.
+std::vector<std::uint8_t> DataPacket(std::uint32_t us_past_hour) {
+  std::vector<std::uint8_t> packet(1206, 0);
+  for (int i = 0; i < 4; ++i) packet[1200 + i] = static_cast<std::uint8_t>(us_past_hour >> (8 * i));
+  packet[1204] = 0x37;
+  packet[1205] = 0x22;
+  return packet;
+}
+
+constexpr TimeNs kHour = 1767225600LL * kNsPerSecond;  // 2026-01-01T00:00:00Z, on the hour
+
+TEST(CanLogFollower, DataPacketTimeResolvesTheHourFromTheReference) {
+  EXPECT_EQ(DataPacketTime(DataPacket(1'500'000), kHour + 1'000'000'000), kHour + 1'500'000'000);
+  // Just past the hour while the reference is just before it: the next hour.
+  EXPECT_EQ(DataPacketTime(DataPacket(1'000), kHour - 2'000'000), kHour + 1'000'000);
+  EXPECT_EQ(DataPacketTime(std::vector<std::uint8_t>(512, 0), kHour), 0);  // position packet
+}
+
+TEST(CanLogFollower, ReleasesFramesUpToEachPacketsTime) {
+  const std::string log =
+      "(1767225601.000000) can0 1D0#0000000000000000\n"
+      "(1767225601.010000) can0 1D0#0100000000000000\n"
+      "(1767225601.020000) can0 1D0#0200000000000000\n"
+      "(1767225601.030000) can0 1D0#0300000000000000\n";
+  CanLogFollower follower(hal::can::CandumpReader::FromString(log));
+  std::vector<TimeNs> released;
+  auto push = [&](const hal::can::CanFrame& frame) { released.push_back(frame.time_ns); };
+  follower.ReleaseUntil(DataPacket(1'005'000), push);
+  EXPECT_EQ(released, (std::vector<TimeNs>{kHour + 1'000'000'000}));
+  follower.ReleaseUntil(std::vector<std::uint8_t>(512, 0), push);  // position packets release nothing
+  EXPECT_EQ(released.size(), 1u);
+  follower.ReleaseUntil(DataPacket(1'020'000), push);  // "not after": the frame at 1.020 s goes
+  EXPECT_EQ(released.size(), 3u);
+  EXPECT_FALSE(follower.finished());
+  follower.ReleaseUntil(DataPacket(2'000'000), push);
+  EXPECT_EQ(released.size(), 4u);
+  EXPECT_TRUE(follower.finished());
+  EXPECT_EQ(follower.released(), 4u);
+}
+
+}  // namespace
+}  // namespace flat2d::daemon
