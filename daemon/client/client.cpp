@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -164,19 +165,29 @@ std::uint64_t Client::reconnects() const { return connection_->reconnects; }
 Result<v1::Response> Client::Call(v1::Request request) {
   Connection& c = *connection_;
   request.set_id(++c.next_id);
-  for (int attempt = 0; attempt < 2; ++attempt) {  // the second after a reconnect
+  // Retried on a new connection until reconnect_ms after the first failure: a restarting
+  // daemon may even accept a connection into the backlog of a listener that is going away.
+  std::optional<Clock::time_point> give_up;
+  std::string reason;
+  while (!give_up || Clock::now() < *give_up) {
     if (Status up = c.Ensure(); !up.ok()) return up.error();
-    if (c.Send(request).ok()) {
+    if (Status sent = c.Send(request); sent.ok()) {
       while (true) {
         Result<v1::Response> response = c.Receive(c.options.timeout_ms);
-        if (!response.ok()) break;
+        if (!response.ok()) {
+          reason = response.error().message;
+          break;
+        }
         if (response->id() == request.id()) return response;
         // A subscription update that arrived meanwhile: skipped, the next is newer anyway.
       }
+    } else {
+      reason = sent.error().message;
     }
     c.Disconnect();
+    if (!give_up) give_up = Clock::now() + std::chrono::milliseconds(c.options.reconnect_ms);
   }
-  return MakeError("no response from " + c.options.endpoint);
+  return MakeError("no response from " + c.options.endpoint + ": " + reason);
 }
 
 namespace {
@@ -251,17 +262,23 @@ Result<v1::PoseReply> Client::NextUpdate() {
   Connection& c = *connection_;
   // Three update periods, at least a call's timeout: a silent daemon is a gone daemon.
   const int wait_ms = std::max(c.options.timeout_ms, c.subscribed_hz > 0.0 ? static_cast<int>(3000.0 / c.subscribed_hz) : 0);
-  for (int attempt = 0; attempt < 2; ++attempt) {
+  std::string reason;
+  std::optional<Clock::time_point> give_up;
+  while (!give_up || Clock::now() < *give_up) {
     if (Status up = c.Ensure(); !up.ok()) return up.error();
     while (true) {
       Result<v1::Response> response = c.Receive(wait_ms);
-      if (!response.ok()) break;
+      if (!response.ok()) {
+        reason = response.error().message;
+        break;
+      }
       if (response->id() == c.subscription_id && response->has_pose()) return response->pose();
       if (response->has_error()) return ResponseError(*response);
     }
-    c.Disconnect();  // reconnects and re-subscribes on the next attempt
+    c.Disconnect();  // reconnects and re-subscribes on the next round
+    if (!give_up) give_up = Clock::now() + std::chrono::milliseconds(c.options.reconnect_ms);
   }
-  return MakeError("the subscription to " + c.options.endpoint + " ended");
+  return MakeError("the subscription to " + c.options.endpoint + " ended: " + reason);
 }
 
 }  // namespace flat2d::client

@@ -3,9 +3,9 @@
 //
 // A blocking client over the API socket (daemon/api/flat2d_api.proto, length-delimited):
 // each call sends one Request and waits, up to timeout_ms, for the Response with its id.
-// When the daemon restarts, the next call (or NextUpdate of a subscription) reconnects,
-// retrying for up to reconnect_ms, and re-subscribes; a call that fails after that returns
-// the error. Not thread-safe: one Client per thread.
+// When the daemon restarts, the next call (or NextUpdate of a subscription) reconnects and
+// re-subscribes, retrying until reconnect_ms after the first failure; a call that fails
+// after that returns the error. Not thread-safe: one Client per thread.
 #pragma once
 
 #include <cstdint>

@@ -12,6 +12,7 @@ namespace flat2d::daemon {
 namespace {
 
 constexpr std::uint32_t kVelodyneDataPort = 2368;
+constexpr std::uint32_t kVelodynePositionPort = 8308;
 constexpr std::uint32_t kDefaultReceiveBuffer = 4u << 20;
 constexpr std::uint32_t kDefaultRing = 4096;
 constexpr std::uint32_t kMaxRing = 1u << 16;
@@ -34,6 +35,7 @@ void FillDefaults(DaemonConfig& config) {
     UdpLidarSource& udp = *lidar.mutable_udp();
     if (udp.bind_address().empty()) udp.set_bind_address("0.0.0.0");
     FLAT2D_DEFAULT(udp, port, kVelodyneDataPort);
+    FLAT2D_DEFAULT(udp, position_port, kVelodynePositionPort);
     FLAT2D_DEFAULT(udp, receive_buffer_bytes, kDefaultReceiveBuffer);
   }
   if (lidar.has_pcap()) FLAT2D_DEFAULT(*lidar.mutable_pcap(), rate, 1.0);
@@ -84,6 +86,7 @@ Status ValidateSources(const DaemonConfig& config, std::string_view source) {
       return FieldError(source, "lidar.udp.bind_address", "not an IPv4 address: " + lidar.udp().bind_address());
     }
     if (lidar.udp().port() > 65535) return FieldError(source, "lidar.udp.port", "above 65535");
+    if (lidar.udp().position_port() > 65535) return FieldError(source, "lidar.udp.position_port", "above 65535");
     if (!lidar.udp().sensor_address().empty() && !hal::net::ParseIpv4(lidar.udp().sensor_address())) {
       return FieldError(source, "lidar.udp.sensor_address", "not an IPv4 address: " + lidar.udp().sensor_address());
     }

@@ -27,8 +27,16 @@ namespace {
 constexpr std::size_t kFramesPerWakeup = 64;  // then the next client's turn (epoll is level-triggered)
 constexpr int kMaxEvents = 64;
 constexpr int kIdleTimeoutMs = 100;           // the heartbeat's pace when nothing happens
+// epoll tags: the wake eventfd; a listener (bit 63, its index); a client (its slot in the low
+// 32 bits, the slot's connection generation above, so an event queued for a connection that
+// was closed earlier in the same batch cannot act on the next connection in that slot).
 constexpr std::uint64_t kWakeTag = ~std::uint64_t{0};
-constexpr std::uint64_t kListenerTag = std::uint64_t{1} << 32;
+constexpr std::uint64_t kListenerTag = std::uint64_t{1} << 63;
+constexpr std::uint64_t kSlotMask = 0xFFFFFFFFu;
+
+std::uint64_t ClientTag(std::size_t slot, std::uint32_t generation) {
+  return (static_cast<std::uint64_t>(generation & 0x7FFFFFFFu) << 32) | slot;
+}
 
 TimeNs MonotonicNs() {
   timespec now{};
@@ -49,6 +57,7 @@ struct ApiServer::Client {
   std::size_t out_used = 0;
   std::size_t out_sent = 0;
   bool write_interest = false;
+  std::uint32_t generation = 0;  // connections this slot has held
   std::uint64_t subscription_id = 0;
   TimeNs period_ns = 0;  // 0: not subscribed
   TimeNs next_update_ns = 0;
@@ -133,11 +142,11 @@ void ApiServer::Run(std::stop_token stop) {
       if (tag == kWakeTag) {
         stopping = true;
       } else if ((tag & kListenerTag) != 0) {
-        AcceptAll(listeners_[tag & 0xFFFFFFFFu].get());
+        AcceptAll(listeners_[tag & kSlotMask].get());
       } else {
-        const std::size_t slot = tag;
+        const std::size_t slot = tag & kSlotMask;
         Client& client = *clients_[slot];
-        if (!client.fd.valid()) continue;
+        if (!client.fd.valid() || tag != ClientTag(slot, client.generation)) continue;
         if ((events[i].events & (EPOLLERR | EPOLLHUP)) != 0 && (events[i].events & EPOLLIN) == 0) {
           Close(slot);
           continue;
@@ -168,11 +177,12 @@ void ApiServer::AcceptAll(int listener) {
     }
     const auto slot = static_cast<std::size_t>(free_slot - clients_.begin());
     hal::net::SetIntOption(accepted, SOL_SOCKET, SO_SNDBUF, options_.socket_send_buffer_bytes);
+    Client& client = **free_slot;
     epoll_event event{};
     event.events = EPOLLIN;
-    event.data.u64 = slot;
+    event.data.u64 = ClientTag(slot, client.generation + 1);
     if (epoll_ctl(epoll_.get(), EPOLL_CTL_ADD, accepted.get(), &event) != 0) continue;
-    Client& client = **free_slot;
+    ++client.generation;
     client.fd = std::move(accepted);
     client.reader.Reset();
     client.out_used = client.out_sent = 0;
@@ -271,7 +281,7 @@ void ApiServer::UpdateWriteInterest(std::size_t slot) {
   if (pending == client.write_interest) return;
   epoll_event event{};
   event.events = EPOLLIN | (pending ? EPOLLOUT : 0u);
-  event.data.u64 = slot;
+  event.data.u64 = ClientTag(slot, client.generation);
   if (epoll_ctl(epoll_.get(), EPOLL_CTL_MOD, client.fd.get(), &event) == 0) client.write_interest = pending;
 }
 

@@ -44,6 +44,7 @@ Eigen::Matrix3d Covariance(double sigma_m, double sigma_rad) {
 
 Result<std::unique_ptr<localization::LocalizationPipeline>> MakePipeline(DaemonInputs& inputs) {
   localization::LocalizationPipelineOptions options;
+  options.stream = StreamOptionsFor(inputs.config.lidar());
   options.grid = inputs.grid;
   options.localizer = inputs.localizer;
   return localization::LocalizationPipeline::Create(inputs.dbc, inputs.odometry, std::move(*inputs.map), options);
@@ -160,7 +161,9 @@ void Daemon::ApplyStartPose(const DaemonConfig& config) {
     auto persisted = LoadPersistedPose(persistence.l2g_path());
     if (persisted.ok() && persisted->map() == config.map()) {
       Log("warm start from " + persistence.l2g_path());
-      worker_->RequestInitialPose({0, localization::Se2(Eigen::Vector2d(persisted->x(), persisted->y()), persisted->theta()),
+      // At its own time: if the odometry still covers it (a replay), odometry carries it on.
+      worker_->RequestInitialPose({persisted->time_ns(),
+                                   localization::Se2(Eigen::Vector2d(persisted->x(), persisted->y()), persisted->theta()),
                                    Covariance(persistence.warm_start_sigma_m(), persistence.warm_start_sigma_rad())});
       return;
     }

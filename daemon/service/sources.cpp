@@ -1,7 +1,11 @@
 #include "daemon/service/sources.hpp"
 
+#include <poll.h>
+
+#include <array>
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include "hal/net/ipv4.hpp"
 
@@ -10,20 +14,30 @@ namespace {
 
 constexpr int kPollMs = 100;
 
+// The data socket and, on its own port, the position socket, drained as they become readable.
 class UdpLidarThread final : public SourceThread {
  public:
-  explicit UdpLidarThread(hal::net::UdpReceiver receiver) : receiver_(std::move(receiver)) {}
+  explicit UdpLidarThread(std::vector<hal::net::UdpReceiver> receivers) : receivers_(std::move(receivers)) {}
   void Run(std::stop_token stop, InputQueue& queue) override {
+    std::array<pollfd, 2> waits{};
+    for (std::size_t i = 0; i < receivers_.size(); ++i) waits[i] = {receivers_[i].fd(), POLLIN, 0};
     while (!stop.stop_requested()) {
       Beat();
-      for (const hal::net::UdpDatagram& datagram : receiver_.ReceiveBatch(kPollMs)) queue.PushDatagram(datagram);
-      drops_.store(receiver_.stats().kernel_drops + receiver_.stats().truncated, std::memory_order_relaxed);
+      if (::poll(waits.data(), receivers_.size(), kPollMs) <= 0) continue;
+      std::uint64_t drops = 0;
+      for (std::size_t i = 0; i < receivers_.size(); ++i) {
+        if ((waits[i].revents & POLLIN) != 0) {
+          for (const hal::net::UdpDatagram& datagram : receivers_[i].ReceiveBatch(0)) queue.PushDatagram(datagram);
+        }
+        drops += receivers_[i].stats().kernel_drops + receivers_[i].stats().truncated;
+      }
+      drops_.store(drops, std::memory_order_relaxed);
     }
   }
   std::uint64_t source_drops() const override { return drops_.load(std::memory_order_relaxed); }
 
  private:
-  hal::net::UdpReceiver receiver_;
+  std::vector<hal::net::UdpReceiver> receivers_;  // data, then position (when on its own port)
   std::atomic<std::uint64_t> drops_{0};
 };
 
@@ -78,6 +92,15 @@ class SocketCanThread final : public SourceThread {
 
 }  // namespace
 
+hal::velodyne::VelodyneStreamOptions StreamOptionsFor(const LidarSource& config) {
+  hal::velodyne::VelodyneStreamOptions options;
+  if (config.has_udp()) {
+    options.data_port = static_cast<std::uint16_t>(config.udp().port());
+    options.position_port = static_cast<std::uint16_t>(config.udp().position_port());
+  }
+  return options;
+}
+
 Result<std::unique_ptr<SourceThread>> OpenLidarSource(const LidarSource& config) {
   if (config.has_pcap()) {
     auto capture = hal::net::OpenCapture(config.pcap().path());
@@ -89,9 +112,18 @@ Result<std::unique_ptr<SourceThread>> OpenLidarSource(const LidarSource& config)
   options.port = static_cast<std::uint16_t>(config.udp().port());
   options.receive_buffer_bytes = static_cast<int>(config.udp().receive_buffer_bytes());
   if (!config.udp().sensor_address().empty()) options.source_filter = hal::net::ParseIpv4(config.udp().sensor_address());
-  auto receiver = hal::net::UdpReceiver::Open(options);
-  if (!receiver.ok()) return receiver.error();
-  return std::unique_ptr<SourceThread>(std::make_unique<UdpLidarThread>(std::move(*receiver)));
+  std::vector<hal::net::UdpReceiver> receivers;
+  auto data = hal::net::UdpReceiver::Open(options);
+  if (!data.ok()) return data.error();
+  receivers.push_back(std::move(*data));
+  if (config.udp().position_port() != config.udp().port()) {
+    options.port = static_cast<std::uint16_t>(config.udp().position_port());
+    options.receive_buffer_bytes = 0;  // one packet a second
+    auto position = hal::net::UdpReceiver::Open(options);
+    if (!position.ok()) return position.error();
+    receivers.push_back(std::move(*position));
+  }
+  return std::unique_ptr<SourceThread>(std::make_unique<UdpLidarThread>(std::move(receivers)));
 }
 
 Result<std::unique_ptr<SourceThread>> OpenCanSource(const CanSource& config) {

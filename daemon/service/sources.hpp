@@ -20,6 +20,7 @@
 #include "hal/common/error.hpp"
 #include "hal/net/datagram_source.hpp"
 #include "hal/net/udp_receiver.hpp"
+#include "hal/velodyne/velodyne_stream.hpp"
 
 namespace flat2d::daemon {
 
@@ -40,6 +41,10 @@ class SourceThread {
   std::atomic<std::uint64_t> heartbeat_{0};
   std::atomic<bool> finished_{false};
 };
+
+// The stream's sensor ports for the source: a capture keeps the recorded 2368/8308, a live
+// socket takes the configured ones.
+hal::velodyne::VelodyneStreamOptions StreamOptionsFor(const LidarSource& config);
 
 // Opens the configured LiDAR source (the socket is bound, or the file read, before start-up
 // reports ready).

@@ -11,6 +11,10 @@ namespace {
 // A 1206-byte data packet whose timestamp (offset 1200, little-endian) is `us_past_hour`.
 std::vector<std::uint8_t> DataPacket(std::uint32_t us_past_hour) {
   std::vector<std::uint8_t> packet(1206, 0);
+  for (int block = 0; block < 12; ++block) {
+    packet[block * 100] = 0xFF;
+    packet[block * 100 + 1] = 0xEE;
+  }
   for (int i = 0; i < 4; ++i) packet[1200 + i] = static_cast<std::uint8_t>(us_past_hour >> (8 * i));
   packet[1204] = 0x37;
   packet[1205] = 0x22;
@@ -24,6 +28,28 @@ TEST(CanLogFollower, DataPacketTimeResolvesTheHourFromTheReference) {
   // Just past the hour while the reference is just before it: the next hour.
   EXPECT_EQ(DataPacketTime(DataPacket(1'000), kHour - 2'000'000), kHour + 1'000'000);
   EXPECT_EQ(DataPacketTime(std::vector<std::uint8_t>(512, 0), kHour), 0);  // position packet
+  std::vector<std::uint8_t> damaged = DataPacket(1'500'000);
+  damaged[700] = 0x00;  // block 7's flag
+  EXPECT_EQ(DataPacketTime(damaged, kHour), 0);
+}
+
+TEST(CanLogFollower, OneJumpingTimestampDoesNotRunTheLogAhead) {
+  std::string log;
+  for (int k = 0; k < 100; ++k) log += "(17672256" + std::to_string(10 + k / 10) + "." + std::to_string(k % 10) + "00000) can0 1D0#00\n";
+  CanLogFollower follower(hal::can::CandumpReader::FromString(log));  // frames at 10.0 .. 19.9 s
+  std::size_t released = 0;
+  auto push = [&](const hal::can::CanFrame&) { ++released; };
+  follower.ReleaseUntil(DataPacket(10'050'000), push);  // 10.05 s: one frame
+  EXPECT_EQ(released, 1u);
+  follower.ReleaseUntil(DataPacket(18'000'000), push);  // a damaged 18 s: ignored
+  EXPECT_EQ(released, 1u);
+  EXPECT_EQ(follower.implausible(), 1u);
+  follower.ReleaseUntil(DataPacket(10'150'000), push);  // the stream goes on at 10.15 s
+  EXPECT_EQ(released, 2u);
+  follower.ReleaseUntil(DataPacket(15'000'000), push);  // a real jump (a pause), confirmed by the next
+  EXPECT_EQ(released, 2u);
+  follower.ReleaseUntil(DataPacket(15'100'000), push);
+  EXPECT_EQ(released, 52u);  // frames up to 15.1 s
 }
 
 TEST(CanLogFollower, ReleasesFramesUpToEachPacketsTime) {

@@ -1,0 +1,341 @@
+#!/usr/bin/env python3
+"""flat2dd end to end, as a vehicle integrator runs it: a simulated world's mapping drive
+built into a prior map, the daemon started on another drive of the world, poses read by the
+`flat2d` client and judged against the simulator's truth. Covers the pcap replay source, the
+live UDP source (the capture sent to loopback by flat2d-inspect replay) with the candump log
+following the LiDAR's clock, malformed API requests and packets, SIGHUP reload with a
+subscriber connected, kill -9 and a warm start, SIGTERM, and bad configurations.
+
+usage: flat2dd_cli_test.py FLAT2DD FLAT2D FLAT2D_SIM FLAT2D_MAP FLAT2D_INSPECT SOURCE_DIR WORK_DIR [quick]
+"quick" (the sanitizer build) runs a 12 s drive through the pcap source at real time and
+checks the service's behaviour, not the accuracy, which the release build checks.
+"""
+import bisect
+import json
+import math
+import os
+import random
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+import unittest
+
+FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE, WORK = sys.argv[1:8]
+QUICK = len(sys.argv) > 8 and sys.argv[8] == "quick"
+PACKAGING = os.path.join(SOURCE, "packaging", "config")
+
+
+def run(*args, timeout=600):
+    return subprocess.run(list(args), capture_output=True, text=True, timeout=timeout)
+
+
+def free_port(kind):
+    with socket.socket(socket.AF_INET, kind) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Truth:
+    def __init__(self, path):
+        self.t, self.x, self.y = [], [], []
+        with open(path) as f:
+            for line in f:
+                v = line.split()
+                self.t.append(float(v[0]))
+                self.x.append(float(v[1]))
+                self.y.append(float(v[2]))
+
+    def error(self, time_s, x, y):
+        i = bisect.bisect_left(self.t, time_s)
+        if i <= 0 or i >= len(self.t):
+            return None
+        s = (time_s - self.t[i - 1]) / (self.t[i] - self.t[i - 1])
+        tx = self.x[i - 1] + s * (self.x[i] - self.x[i - 1])
+        ty = self.y[i - 1] + s * (self.y[i] - self.y[i - 1])
+        return math.hypot(x - tx, y - ty)
+
+
+def percentile(values, q):
+    values = sorted(values)
+    return values[min(len(values) - 1, int(q * len(values)))]
+
+
+class Watcher:
+    """`flat2d watch --json` in the background: every pose it prints, with the wall time."""
+
+    def __init__(self, sock, rate=20):
+        self.poses = []
+        self.process = subprocess.Popen([FLAT2D, "--socket", sock, "--json", "watch", "--rate", str(rate)],
+                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        RUNNING.append(self.process)
+        self.thread = threading.Thread(target=self._read, daemon=True)
+        self.thread.start()
+
+    def _read(self):
+        for line in self.process.stdout:
+            try:
+                self.poses.append((time.monotonic(), json.loads(line)))
+            except json.JSONDecodeError:
+                pass
+
+    def stop(self):
+        self.process.terminate()
+        self.process.wait(timeout=5)
+        return self.process.returncode
+
+
+RUNNING = []  # every process started, killed at the end of each test whatever happened
+
+
+class Daemon:
+    def __init__(self, config, sock):
+        self.config, self.sock = config, sock
+        self.log = open(config + ".log", "a")
+        self.started = time.monotonic()
+        self.process = subprocess.Popen([FLAT2DD, "--config", config], stdout=self.log, stderr=self.log)
+        RUNNING.append(self.process)
+
+    def wait_ready(self, timeout=30):
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if self.process.poll() is not None:
+                raise AssertionError("flat2dd exited with %d" % self.process.returncode)
+            if os.path.exists(self.sock) and self.status() is not None:
+                return
+            time.sleep(0.05)
+        raise AssertionError("flat2dd did not become ready")
+
+    def status(self):
+        result = run(FLAT2D, "--socket", self.sock, "--json", "--timeout", "1000", "status", timeout=10)
+        return json.loads(result.stdout) if result.returncode == 0 else None
+
+    def wait_state(self, state, timeout):
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            status = self.status()
+            if status and status.get("state") == state:
+                return True
+            time.sleep(0.05)
+        return False
+
+    def stop(self):
+        start = time.monotonic()
+        self.process.send_signal(signal.SIGTERM)
+        code = self.process.wait(timeout=10)
+        return code, time.monotonic() - start
+
+
+def write_config(path, lidar, can, drive, map_path, sock, pose_file, initial=None):
+    lines = [lidar, can,
+             'dbc: "%s"' % os.path.join(drive, "vehicle.dbc"),
+             'odometry_config: "%s"' % os.path.join(PACKAGING, "odometry", "flat2d_sim.textproto"),
+             'grid_config: "%s"' % os.path.join(PACKAGING, "grid", "structure_grid.textproto"),
+             'localizer_config: "%s"' % os.path.join(PACKAGING, "localizer", "localizer.textproto"),
+             'map: "%s"' % map_path,
+             'api { unix_socket: "%s" }' % sock,
+             'persistence { l2g_path: "%s" period_s: 0.5 }' % pose_file]
+    if initial:
+        lines.append("initial_pose { x: %.6f y: %.6f theta: %.6f sigma_m: 0.2 sigma_rad: 0.02 }" % initial)
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def accuracy(poses, truth):
+    errors = []
+    for _, p in poses:
+        if p.get("valid") and p.get("state") == "LOCALIZED":
+            g = p["global_T_vehicle"]
+            e = truth.error(int(p["time_ns"]) * 1e-9, g["x"], g["y"])
+            if e is not None:
+                errors.append(e)
+    return errors
+
+
+class DaemonEndToEnd(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        os.makedirs(WORK, exist_ok=True)
+        cls.mapping = os.path.join(WORK, "mapping")
+        cls.drive = os.path.join(WORK, "drive2")
+        drive_extra = ["--duration", "12"] if QUICK else []
+        mapping_extra = ["--duration", "30"] if QUICK else []
+        for out, drive, seed, extra in ((cls.mapping, "0", "5", mapping_extra),
+                                        (cls.drive, "2", "6", ["--gnss"] + drive_extra)):
+            result = run(SIM, "--world", "occluders", "--drive", drive, "--seed", seed, "--sensor", "vlp16",
+                         *extra, "--out", out)
+            assert result.returncode == 0, result.stderr
+        cls.map = os.path.join(WORK, "occluders.f2m")
+        m = cls.mapping
+        result = run(MAP, "build", "--pcap", os.path.join(m, "lidar.pcap"), "--can", os.path.join(m, "can.log"),
+                     "--dbc", os.path.join(m, "vehicle.dbc"), "--odometry",
+                     os.path.join(PACKAGING, "odometry", "flat2d_sim.textproto"),
+                     "--anchor", os.path.join(m, "truth.tum"), "--out", cls.map)
+        assert result.returncode == 0, result.stderr
+        cls.truth = Truth(os.path.join(cls.drive, "truth.tum"))
+        cls.start = (cls.truth.x[0], cls.truth.y[0], 0.0)
+
+    def tearDown(self):
+        for process in RUNNING:
+            if process.poll() is None:
+                process.kill()
+                process.wait()
+        RUNNING.clear()
+
+    def paths(self, name):
+        sock = os.path.join(WORK, name + ".sock")
+        pose_file = os.path.join(WORK, name + ".pose.textproto")
+        for p in (sock, pose_file):
+            if os.path.exists(p):
+                os.remove(p)
+        return os.path.join(WORK, name + ".textproto"), sock, pose_file
+
+    def test_pcap_replay_serves_poses_within_the_targets(self):
+        config, sock, pose_file = self.paths("pcap")
+        rate = 1 if QUICK else 4
+        write_config(config, 'lidar { pcap { path: "%s" rate: %g } }' % (os.path.join(self.drive, "lidar.pcap"), rate),
+                     'can { candump { path: "%s" } }' % os.path.join(self.drive, "can.log"),
+                     self.drive, self.map, sock, pose_file, initial=self.start)
+        daemon = Daemon(config, sock)
+        daemon.wait_ready()
+        ready_s = time.monotonic() - daemon.started
+        watcher = Watcher(sock)
+        duration = (self.truth.t[-1] - self.truth.t[0]) / rate
+        time.sleep(duration + 1.0)
+        status = daemon.status()
+        at = run(FLAT2D, "--socket", sock, "--json", "pose", "--at", str(int(self.truth.t[-1] * 1e9) - 2 * 10**9))
+        early = run(FLAT2D, "--socket", sock, "pose", "--at", str(int(self.truth.t[0] * 1e9) - 60 * 10**9))
+        self.assertEqual(watcher.stop(), -signal.SIGTERM)
+        code, stop_s = daemon.stop()
+        self.assertEqual(code, 0)
+        self.assertLess(stop_s, 1.0)
+        print("pcap x%g: ready after %.2f s, %d poses, stop %.3f s" % (rate, ready_s, len(watcher.poses), stop_s))
+
+        self.assertGreater(int(status["lidar"]["received"]), 1000)
+        self.assertGreater(int(status["can"]["received"]), 1000)
+        if not QUICK:  # a sanitizer build need not keep up with real time
+            self.assertEqual(status["state"], "LOCALIZED")
+            self.assertGreater(int(status["revolutions"]), (self.truth.t[-1] - self.truth.t[0]) * 9)
+            self.assertEqual(int(status["lidar"]["dropped"]), 0)
+        self.assertEqual(at.returncode, 0, at.stderr)
+        self.assertTrue(json.loads(at.stdout)["valid"])
+        self.assertEqual(early.returncode, 1)
+        self.assertIn("OUT_OF_WINDOW", early.stderr)
+        self.assertTrue(os.path.exists(pose_file))
+        errors = accuracy(watcher.poses, self.truth)
+        self.assertGreater(len(errors), 0 if QUICK else 10 * duration)  # 20 Hz, most of it LOCALIZED
+        if errors:
+            print("pcap x%g: position error p50 %.3f m p95 %.3f m over %d poses" %
+                  (rate, percentile(errors, 0.5), percentile(errors, 0.95), len(errors)))
+        if not QUICK:
+            self.assertLess(percentile(errors, 0.95), 0.10)
+
+    @unittest.skipIf(QUICK, "real-time UDP at twice the recorded rate: the release build")
+    def test_live_udp_with_bad_input_reload_and_a_kill(self):
+        config, sock, pose_file = self.paths("udp")
+        port = free_port(socket.SOCK_DGRAM)
+        write_config(config, 'lidar { udp { bind_address: "127.0.0.1" port: %d position_port: %d } }' % (port, port),
+                     'can { candump { path: "%s" } }' % os.path.join(self.drive, "can.log"),
+                     self.drive, self.map, sock, pose_file, initial=self.start)
+        daemon = Daemon(config, sock)
+        daemon.wait_ready()
+        watcher = Watcher(sock)
+        speed = 2
+        replay = subprocess.Popen([INSPECT, "replay", "--to", "127.0.0.1:%d" % port, "--speed", str(speed),
+                                   os.path.join(self.drive, "lidar.pcap")],
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        RUNNING.append(replay)
+        self.assertTrue(daemon.wait_state("LOCALIZED", 5), "not LOCALIZED within 5 s of the replay")
+
+        # Bad input: malformed requests on the API, malformed datagrams on the LiDAR port.
+        rng = random.Random(1)
+        bad_udp = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        for _ in range(500):
+            size = rng.choice([0, 7, 511, 513, 1205, 1206, 1207])
+            payload = bytes(rng.getrandbits(8) for _ in range(size))
+            bad_udp.sendto(payload, ("127.0.0.1", port))
+        for _ in range(100):
+            with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as s:
+                s.connect(sock)
+                s.sendall(bytes([6]) + bytes(rng.getrandbits(8) for _ in range(6)))  # a frame, garbage inside
+                s.sendall(bytes([0x80, 0x80, 0x80, 0x80, 0x10]))                   # then 4 GiB announced
+                s.settimeout(2)
+                try:
+                    while s.recv(4096):
+                        pass
+                except socket.timeout:
+                    self.fail("the daemon kept a connection that announced 4 GiB")
+        deadline = time.monotonic() + 3  # the health figures are published once a revolution
+        while True:
+            status = daemon.status()
+            if int(status["lidar"]["malformed"]) >= 500 or time.monotonic() > deadline:
+                break
+            time.sleep(0.1)
+        self.assertGreaterEqual(int(status["malformed_requests"]), 200)
+        self.assertEqual(int(status["lidar"]["malformed"]), 500)
+        self.assertEqual(status["state"], "LOCALIZED")
+
+        # SIGHUP: map and options reloaded, the subscriber keeps its connection.
+        before = len(watcher.poses)
+        daemon.process.send_signal(signal.SIGHUP)
+        time.sleep(0.5)
+        self.assertTrue(daemon.wait_state("LOCALIZED", 3), "not LOCALIZED after the reload")
+        self.assertGreater(len(watcher.poses), before)
+        self.assertIsNone(watcher.process.poll())
+
+        # kill -9 mid-drive, then a warm start from the persisted pose.
+        time.sleep(1.0)
+        self.assertTrue(os.path.exists(pose_file))
+        daemon.process.kill()
+        daemon.process.wait()
+        restarted = Daemon(config, sock)
+        restarted.wait_ready()
+        self.assertTrue(restarted.wait_state("LOCALIZED", 2.0), "not LOCALIZED within 2 s of the warm start")
+        relocalized_s = time.monotonic() - restarted.started
+        replay.wait(timeout=60)
+        time.sleep(0.5)
+        final = restarted.status()
+        if watcher.process.poll() is not None:
+            self.fail("the subscriber gave up: " + watcher.process.stderr.read())
+        watcher.stop()
+        code, stop_s = restarted.stop()
+        self.assertEqual(code, 0)
+        self.assertLess(stop_s, 1.0)
+        with open(config + ".log") as f:
+            self.assertIn("warm start", f.read())
+        errors = accuracy(watcher.poses, self.truth)
+        print("udp x%d: warm start LOCALIZED after %.2f s; %d LOCALIZED poses, p50 %.3f m p95 %.3f m; "
+              "lidar %s/s received %s dropped %s" % (speed, relocalized_s, len(errors), percentile(errors, 0.5),
+                                                   percentile(errors, 0.95), final["lidar"]["rate_hz"],
+                                                   final["lidar"]["received"], final["lidar"]["dropped"]))
+        self.assertLess(percentile(errors, 0.95), 0.10)
+
+    def test_bad_configuration_stops_start_up(self):
+        config, sock, pose_file = self.paths("bad")
+        write_config(config, 'lidar { pcap { path: "%s" } }' % os.path.join(self.drive, "lidar.pcap"),
+                     'can { candump { path: "%s" } }' % os.path.join(self.drive, "can.log"),
+                     self.drive, self.map, sock, pose_file)
+        checked = run(FLAT2DD, "--config", config, "--check")
+        self.assertEqual(checked.returncode, 0, checked.stderr)
+        with open(config, "a") as f:
+            f.write("watchdog_stal_s: 3\n")
+        unknown = run(FLAT2DD, "--config", config)
+        self.assertEqual(unknown.returncode, 1)
+        self.assertIn(config + ":10:", unknown.stderr)
+        self.assertIn("watchdog_stal_s", unknown.stderr)
+        write_config(config, 'lidar { pcap { path: "%s" } }' % os.path.join(self.drive, "lidar.pcap"),
+                     'can { candump { path: "%s" } }' % os.path.join(self.drive, "can.log"),
+                     self.drive, os.path.join(WORK, "no-such-map.f2m"), sock, pose_file)
+        missing = run(FLAT2DD, "--config", config)
+        self.assertEqual(missing.returncode, 1)
+        self.assertIn("no-such-map.f2m", missing.stderr)
+        self.assertEqual(run(FLAT2DD, "--bogus").returncode, 2)
+        self.assertEqual(run(FLAT2D, "--socket", sock, "pose", "--timeout").returncode, 2)
+        down = run(FLAT2D, "--socket", os.path.join(WORK, "nobody.sock"), "--timeout", "200", "status")
+        self.assertEqual(down.returncode, 1)
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1], verbosity=2)
