@@ -85,6 +85,18 @@ void PrintStatus(const v1::Health& health, bool json) {
   std::printf("service    %u clients, %llu malformed requests, RSS %.1f MB, up %.0f s\n", health.clients(),
               static_cast<unsigned long long>(health.malformed_requests()),
               static_cast<double>(health.rss_bytes()) / 1e6, health.uptime_s());
+  const v1::GpioHealth& gpio = health.gpio();
+  if (gpio.pose_valid_configured()) {
+    std::printf("pose valid %s, %llu switches, %llu write failures\n", gpio.pose_valid_on() ? "on" : "off",
+                static_cast<unsigned long long>(gpio.pose_valid_switches()),
+                static_cast<unsigned long long>(gpio.pose_valid_write_failures()));
+  }
+  if (gpio.pps_state() != v1::PPS_NOT_CONFIGURED) {
+    std::printf("pps        %s, offset %.1f us, drift %.2f ppm, jitter %.1f us, %llu pulses, %llu missed\n",
+                v1::PpsState_Name(gpio.pps_state()).c_str(), gpio.pps_offset_us(), gpio.pps_drift_ppm(),
+                gpio.pps_jitter_us(), static_cast<unsigned long long>(gpio.pps_pulses()),
+                static_cast<unsigned long long>(gpio.pps_missed()));
+  }
   if (!health.last_error().empty()) std::printf("last error %s\n", health.last_error().c_str());
 }
 

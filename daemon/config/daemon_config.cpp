@@ -1,7 +1,9 @@
 #include "daemon/config/daemon_config.hpp"
 
 #include <string>
+#include <type_traits>
 
+#include "daemon/service/gpio_wiring.hpp"
 #include "hal/config/text_proto.hpp"
 #include "hal/net/ipv4.hpp"
 #include "localization/localizer/localizer_config.hpp"
@@ -25,39 +27,52 @@ constexpr std::uint32_t kMinMessage = 256;
 constexpr std::uint32_t kMaxMessage = 1u << 20;
 
 // Proto3 scalars have no presence: zero means "not set", and takes the documented default.
-#define FLAT2D_DEFAULT(message, field, fallback) \
-  if ((message).field() == 0) (message).set_##field(fallback)
+template <typename Message, typename Value>
+void DefaultIfZero(Message& message, Value (Message::*get)() const, void (Message::*set)(Value),
+                   std::type_identity_t<Value> fallback) {
+  if ((message.*get)() == Value{}) (message.*set)(fallback);
+}
 
 void FillDefaults(DaemonConfig& config) {
   LidarSource& lidar = *config.mutable_lidar();
-  FLAT2D_DEFAULT(lidar, ring_datagrams, kDefaultRing);
+  DefaultIfZero(lidar, &LidarSource::ring_datagrams, &LidarSource::set_ring_datagrams, kDefaultRing);
   if (lidar.has_udp()) {
     UdpLidarSource& udp = *lidar.mutable_udp();
     if (udp.bind_address().empty()) udp.set_bind_address("0.0.0.0");
-    FLAT2D_DEFAULT(udp, port, kVelodyneDataPort);
-    FLAT2D_DEFAULT(udp, position_port, kVelodynePositionPort);
-    FLAT2D_DEFAULT(udp, receive_buffer_bytes, kDefaultReceiveBuffer);
+    DefaultIfZero(udp, &UdpLidarSource::port, &UdpLidarSource::set_port, kVelodyneDataPort);
+    DefaultIfZero(udp, &UdpLidarSource::position_port, &UdpLidarSource::set_position_port, kVelodynePositionPort);
+    DefaultIfZero(udp, &UdpLidarSource::receive_buffer_bytes, &UdpLidarSource::set_receive_buffer_bytes, kDefaultReceiveBuffer);
   }
-  if (lidar.has_pcap()) FLAT2D_DEFAULT(*lidar.mutable_pcap(), rate, 1.0);
-  FLAT2D_DEFAULT(*config.mutable_can(), ring_frames, kDefaultRing);
+  if (lidar.has_pcap()) DefaultIfZero(*lidar.mutable_pcap(), &PcapLidarSource::rate, &PcapLidarSource::set_rate, 1.0);
+  DefaultIfZero(*config.mutable_can(), &CanSource::ring_frames, &CanSource::set_ring_frames, kDefaultRing);
   ApiConfig& api = *config.mutable_api();
   if (api.unix_socket().empty()) api.set_unix_socket(kDefaultUnixSocket);
-  FLAT2D_DEFAULT(api, unix_mode, kDefaultUnixMode);
-  FLAT2D_DEFAULT(api, max_clients, kDefaultMaxClients);
-  FLAT2D_DEFAULT(api, max_message_bytes, kDefaultMaxMessage);
-  FLAT2D_DEFAULT(api, max_subscribe_hz, 100.0);
+  DefaultIfZero(api, &ApiConfig::unix_mode, &ApiConfig::set_unix_mode, kDefaultUnixMode);
+  DefaultIfZero(api, &ApiConfig::max_clients, &ApiConfig::set_max_clients, kDefaultMaxClients);
+  DefaultIfZero(api, &ApiConfig::max_message_bytes, &ApiConfig::set_max_message_bytes, kDefaultMaxMessage);
+  DefaultIfZero(api, &ApiConfig::max_subscribe_hz, &ApiConfig::set_max_subscribe_hz, 100.0);
   if (config.has_initial_pose()) {
     InitialPose& initial = *config.mutable_initial_pose();
-    FLAT2D_DEFAULT(initial, sigma_m, 1.0);
-    FLAT2D_DEFAULT(initial, sigma_rad, 0.1);
+    DefaultIfZero(initial, &InitialPose::sigma_m, &InitialPose::set_sigma_m, 1.0);
+    DefaultIfZero(initial, &InitialPose::sigma_rad, &InitialPose::set_sigma_rad, 0.1);
   }
   Persistence& persistence = *config.mutable_persistence();
-  FLAT2D_DEFAULT(persistence, period_s, 1.0);
-  FLAT2D_DEFAULT(persistence, warm_start_sigma_m, 2.0);
-  FLAT2D_DEFAULT(persistence, warm_start_sigma_rad, 0.2);
-  FLAT2D_DEFAULT(config, watchdog_stall_s, 2.0);
+  DefaultIfZero(persistence, &Persistence::period_s, &Persistence::set_period_s, 1.0);
+  DefaultIfZero(persistence, &Persistence::warm_start_sigma_m, &Persistence::set_warm_start_sigma_m, 2.0);
+  DefaultIfZero(persistence, &Persistence::warm_start_sigma_rad, &Persistence::set_warm_start_sigma_rad, 0.2);
+  GpioConfig& gpio = *config.mutable_gpio();
+  if (gpio.has_pose_valid()) {
+    PoseValidOutputConfig& output = *gpio.mutable_pose_valid();
+    DefaultIfZero(output, &PoseValidOutputConfig::min_on_ms, &PoseValidOutputConfig::set_min_on_ms, 500);
+    DefaultIfZero(output, &PoseValidOutputConfig::min_off_ms, &PoseValidOutputConfig::set_min_off_ms, 1000);
+  }
+  if (gpio.has_pps()) {
+    PpsInputConfig& pps = *gpio.mutable_pps();
+    DefaultIfZero(pps, &PpsInputConfig::window_pulses, &PpsInputConfig::set_window_pulses, 32);
+    DefaultIfZero(pps, &PpsInputConfig::lock_pulses, &PpsInputConfig::set_lock_pulses, 8);
+  }
+  DefaultIfZero(config, &DaemonConfig::watchdog_stall_s, &DaemonConfig::set_watchdog_stall_s, 2.0);
 }
-#undef FLAT2D_DEFAULT
 
 void Resolve(const std::filesystem::path& folder, std::string& path) {
   if (!path.empty() && std::filesystem::path(path).is_relative()) path = (folder / path).lexically_normal().string();
@@ -126,6 +141,31 @@ Status ValidateApi(const ApiConfig& api, std::string_view source) {
   return Status::Ok();
 }
 
+Status ValidateGpioLine(const GpioLine& line, std::string_view source, const std::string& field) {
+  if (line.chip().empty()) return FieldError(source, field + ".chip", "required");
+  return Status::Ok();
+}
+
+bool SameLine(const GpioLine& a, const GpioLine& b) {
+  return a.chip() == b.chip() && (a.name().empty() && b.name().empty() ? a.offset() == b.offset() : a.name() == b.name());
+}
+
+Status ValidateGpio(const GpioConfig& gpio, std::string_view source) {
+  if (gpio.has_pose_valid()) {
+    if (Status line = ValidateGpioLine(gpio.pose_valid().line(), source, "gpio.pose_valid.line"); !line.ok()) return line;
+  }
+  if (gpio.has_pps()) {
+    if (Status line = ValidateGpioLine(gpio.pps().line(), source, "gpio.pps.line"); !line.ok()) return line;
+    if (Status clock = hal::gpio::ValidatePpsClockOptions(PpsClockOptionsFor(gpio.pps())); !clock.ok()) {
+      return FieldError(source, "gpio.pps", clock.error().message);
+    }
+  }
+  if (gpio.has_pose_valid() && gpio.has_pps() && SameLine(gpio.pose_valid().line(), gpio.pps().line())) {
+    return FieldError(source, "gpio", "pose_valid and pps name the same line");
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status ValidateDaemonConfig(const DaemonConfig& config, std::string_view source) {
@@ -147,7 +187,7 @@ Status ValidateDaemonConfig(const DaemonConfig& config, std::string_view source)
     return FieldError(source, "persistence", "warm_start_sigma_m and warm_start_sigma_rad must be positive");
   }
   if (!(config.watchdog_stall_s() > 0.0)) return FieldError(source, "watchdog_stall_s", "must be positive");
-  return Status::Ok();
+  return ValidateGpio(config.gpio(), source);
 }
 
 Result<DaemonConfig> LoadDaemonConfig(const std::filesystem::path& path) {

@@ -155,6 +155,7 @@ void ApiHandler::FillStatus(v1::Health& health) const {
   health.set_clients(service.clients);
   health.set_malformed_requests(service.malformed_requests);
   health.set_last_error(service.last_error);
+  *health.mutable_gpio() = service.gpio;
 }
 
 void ApiHandler::set_map(MapSummary map) {

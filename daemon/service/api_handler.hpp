@@ -30,6 +30,7 @@ struct ServiceFigures {
   double uptime_s = 0.0;
   TimeNs now_ns = 0;  // wall clock, for the sources' ages
   std::string last_error;
+  api::v1::GpioHealth gpio;
 };
 
 struct MapSummary {

@@ -113,6 +113,9 @@ Status Daemon::Open(DaemonInputs inputs) {
   auto can = OpenCanSource(config_.can());
   if (!can.ok()) return can.error();
   can_ = std::move(*can);
+  auto gpio = GpioWiring::Open(config_.gpio());
+  if (!gpio.ok()) return gpio.error();
+  gpio_ = std::move(*gpio);
   std::optional<CanLogFollower> follower;
   if (config_.can().has_candump()) {
     auto log = hal::can::CandumpReader::Open(config_.can().candump().path());
@@ -191,6 +194,10 @@ void Daemon::StartThreads() {
   watch("localization", [this] { return worker_->heartbeat(); }, [] { return false; });
   threads_.emplace_back([this](std::stop_token stop) { server_->Run(stop); });
   watch("api", [this] { return server_->heartbeat(); }, [] { return false; });
+  if (gpio_->has_pps()) {
+    threads_.emplace_back([this](std::stop_token stop) { gpio_->RunPps(stop); });
+    watch("pps", [this] { return gpio_->pps_heartbeat(); }, [] { return false; });
+  }
   rates_->last_ns = now_ns;
 }
 
@@ -214,6 +221,7 @@ int Daemon::Run() {
   }
   systemd_.Stopping();
   Log("stopping");
+  gpio_->Stop();  // the pose-valid line goes off before the pose stops being served
   for (std::jthread& thread : threads_) thread.request_stop();
   server_->Stop();
   threads_.clear();
@@ -223,6 +231,8 @@ int Daemon::Run() {
 
 void Daemon::Tick() {
   const TimeNs now_ns = MonotonicNs();
+  const localization::LocalizationFix fix = board_->fix();
+  gpio_->UpdatePoseValid(fix.has_fix && fix.state == localization::LocalizerState::kLocalized, now_ns);
   const InputQueueStats& stats = queue_->stats();
   const std::uint64_t datagrams = stats.datagrams.load();
   const std::uint64_t frames = board_->health().can_frames;
@@ -317,6 +327,7 @@ ServiceFigures Daemon::Figures() const {
   figures.rss_bytes = ResidentBytes();
   figures.uptime_s = static_cast<double>(MonotonicNs() - started_ns_) * kNsToS;
   figures.now_ns = ClockNs(CLOCK_REALTIME);
+  figures.gpio = gpio_->Health(figures.now_ns);
   const std::lock_guard lock(error_mutex_);
   figures.last_error = last_error_;
   return figures;
@@ -328,7 +339,12 @@ std::string Daemon::StatusLine() const {
   std::snprintf(line, sizeof(line), "%s, lidar %.0f/s, can %.0f/s, %" PRIu32 " clients",
                 std::string(localization::LocalizerStateName(fix.state)).c_str(), rates_->lidar_hz.load(),
                 rates_->can_hz.load(), server_->stats().clients.load());
-  return line;
+  std::string status = line;
+  if (gpio_->has_pps()) {
+    const api::v1::GpioHealth gpio = gpio_->Health(ClockNs(CLOCK_REALTIME));
+    status += ", pps " + api::v1::PpsState_Name(gpio.pps_state());
+  }
+  return status;
 }
 
 }  // namespace flat2d::daemon

@@ -2,10 +2,11 @@
 // pipeline -> sources and sockets -> threads -> the supervisor loop; torn down in reverse.
 //
 // Threads (DESIGN.md): LiDAR ingest, CAN ingest (SocketCAN only), localization (matcher +
-// graph), API, and the calling thread as supervisor. The supervisor waits on a signalfd
+// graph), API, PPS (when configured), and the calling thread as supervisor. The supervisor waits on a signalfd
 // with a 250 ms tick and on each tick: computes the sources' rates, sends STATUS=, sends
 // WATCHDOG=1 only if every running thread's heartbeat advanced within watchdog_stall_s,
-// and persists the pose every persistence.period_s while LOCALIZED. SIGHUP reloads the
+// persists the pose every persistence.period_s while LOCALIZED, and drives the pose-valid
+// line (gpio.pose_valid: on while LOCALIZED). GPIO lines are not reopened on SIGHUP. SIGHUP reloads the
 // configuration's map, DBC and option files (sources and sockets keep running; a failed
 // reload changes nothing and is reported); SIGTERM or SIGINT stops all threads, persists
 // the last good pose and returns.
@@ -22,6 +23,7 @@
 #include "daemon/config/daemon_config.hpp"
 #include "daemon/service/api_handler.hpp"
 #include "daemon/service/api_server.hpp"
+#include "daemon/service/gpio_wiring.hpp"
 #include "daemon/service/input_queue.hpp"
 #include "daemon/service/localization_worker.hpp"
 #include "daemon/service/pose_board.hpp"
@@ -65,6 +67,7 @@ class Daemon {
   std::unique_ptr<LocalizationWorker> worker_;
   std::unique_ptr<ApiHandler> handler_;
   std::unique_ptr<ApiServer> server_;
+  std::unique_ptr<GpioWiring> gpio_;
   std::vector<std::jthread> threads_;  // joined (stop requested) first in the destructor
   int signal_fd_ = -1;
 

@@ -90,6 +90,12 @@ TEST_F(ConfigFile, InvalidValuesNameTheField) {
       {"can { socketcan { } }", "can.socketcan.interface"},
       {"initial_pose { x: 1 sigma_m: -1 }", "initial_pose"},
       {"persistence { period_s: -1 }", "persistence.period_s"},
+      {"gpio { pose_valid { line { offset: 17 } } }", "gpio.pose_valid.line.chip"},
+      {"gpio { pps { line { offset: 4 } } }", "gpio.pps.line.chip"},
+      {"gpio { pps { line { chip: \"gpiochip0\" } window_pulses: 2 } }", "gpio.pps"},
+      {"gpio { pps { line { chip: \"gpiochip0\" } lock_pulses: 40 } }", "gpio.pps"},
+      {"gpio { pose_valid { line { chip: \"gpiochip0\" name: \"PPS\" } } "
+       "pps { line { chip: \"gpiochip0\" name: \"PPS\" } } }", "gpio"},
   };
   for (const auto& [extra, field] : cases) {
     // A case that sets a source replaces the minimal one (a message field may appear once).
@@ -101,6 +107,17 @@ TEST_F(ConfigFile, InvalidValuesNameTheField) {
     ASSERT_FALSE(config.ok()) << extra;
     EXPECT_NE(config.error().message.find(field + ":"), std::string::npos) << extra << " -> " << config.error().message;
   }
+}
+
+TEST_F(ConfigFile, GpioLinesTakeTheirDocumentedDefaults) {
+  auto config = LoadDaemonConfig(Write(kMinimal + "gpio { pose_valid { line { chip: \"gpiochip0\" offset: 17 } } "
+                                                  "pps { line { chip: \"gpiochip0\" name: \"GNSS_PPS\" } } }\n"));
+  ASSERT_TRUE(config.ok()) << config.error().message;
+  EXPECT_EQ(config->gpio().pose_valid().min_on_ms(), 500u);
+  EXPECT_EQ(config->gpio().pose_valid().min_off_ms(), 1000u);
+  EXPECT_EQ(config->gpio().pps().window_pulses(), 32u);
+  EXPECT_EQ(config->gpio().pps().lock_pulses(), 8u);
+  EXPECT_FALSE(config->gpio().pps().falling_edge());
 }
 
 TEST_F(ConfigFile, MissingSourcesAndFilesAreNamed) {
