@@ -39,7 +39,7 @@ LocalizationPipeline::LocalizationPipeline(CanOdometry odometry, Localizer local
 std::optional<DeadReckoningUpdate> LocalizationPipeline::PushCan(const hal::can::CanFrame& frame) {
   std::optional<DeadReckoningUpdate> update = odometry_.Push(frame);
   // The state follows the clock between revolutions too: a silent LiDAR degrades the fix.
-  if (update && update->new_sample()) localizer_.Tick(update->sample.time_ns);
+  if (update && update->new_sample()) localizer_.Tick(update->sample.time_ns, odometry_.history());
   return update;
 }
 

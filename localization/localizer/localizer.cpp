@@ -143,7 +143,8 @@ RevolutionReport Localizer::AddGrid(const maps::PublishedGrid& grid, const PoseH
   report.match_s = matched - start;
   Track(time_ns, local_T_vehicle, prediction, match, odometry, report);
   report.solve_s = ThreadCpuSeconds() - matched;
-  UpdateState(time_ns);
+  CountUnmatched(time_ns, report.match_accepted);
+  UpdateState(time_ns, PositionSigma(last_node_covariance_));
   report.state = state_;
   return report;
 }
@@ -161,6 +162,8 @@ void Localizer::StartFromInitialPose(TimeNs time_ns, const Se2& local_T_vehicle,
   Restart(time_ns - 1, pose, (covariance + kOdometryCovarianceFloor).inverse());
   global_T_local_ = pose * local_T_vehicle.Inverse();
   last_accepted_ns_ = time_ns;
+  unmatched_ns_ = 0;
+  last_grid_ns_ = 0;
   ever_localized_ = false;
   const double sigma_m = PositionSigma(covariance);
   const double sigma_rad = std::sqrt(covariance(2, 2));
@@ -342,21 +345,30 @@ void Localizer::Restart(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen
   last_node_covariance_ = information.inverse();
 }
 
-void Localizer::UpdateState(TimeNs time_ns) {
+void Localizer::CountUnmatched(TimeNs time_ns, bool accepted) {
+  const TimeNs step = last_grid_ns_ == 0 ? 0 : std::min(time_ns - last_grid_ns_, kMaxRevolutionStep);
+  last_grid_ns_ = time_ns;
+  unmatched_ns_ = accepted ? 0 : unmatched_ns_ + step;
+}
+
+void Localizer::UpdateState(TimeNs time_ns, double position_sigma_m) {
   if (relocalizing_ || confirmations_needed_ > 0) {
     state_ = LocalizerState::kLost;
     return;
   }
+  // LOST on evidence: revolutions that kept coming for lost_after without an accepted match,
+  // or a position uncertainty beyond lost_sigma_m. A silent LiDAR is no evidence against the
+  // pose: through silence odometry carries it, DEGRADED, until its uncertainty says LOST.
   const TimeNs since_match = time_ns - last_accepted_ns_;
   const TimeNs lost_after = ever_localized_ ? options_.lost_after_ns : options_.initial_lost_after_ns;
-  if (since_match > lost_after || PositionSigma(last_node_covariance_) > options_.lost_sigma_m) {
+  if (unmatched_ns_ > lost_after || position_sigma_m > options_.lost_sigma_m) {
     state_ = LocalizerState::kLost;
     relocalizing_ = true;
     // Lost after tracking, the vehicle is where odometry says within its uncertainty: search
     // three standard deviations, not the whole radius a doubtful initial pose gets, so a
     // lookalike farther away cannot win.
     relocalization_radius_m_ =
-        ever_localized_ ? std::clamp(3.0 * PositionSigma(last_node_covariance_), options_.max_tracking_window_m,
+        ever_localized_ ? std::clamp(3.0 * position_sigma_m, options_.max_tracking_window_m,
                                      options_.relocalization_radius_m)
                         : options_.relocalization_radius_m;
   } else if (since_match > options_.degraded_after_ns) {
@@ -383,8 +395,11 @@ GlobalPose Localizer::PoseAt(TimeNs time_ns, const PoseHistory& odometry) const 
   return ComposeGlobalPose(fix(), odometry, time_ns);
 }
 
-void Localizer::Tick(TimeNs time_ns) {
-  if (has_fix_ && time_ns > last_node_ns_) UpdateState(time_ns);
+void Localizer::Tick(TimeNs time_ns, const PoseHistory& odometry) {
+  if (!has_fix_ || time_ns <= last_node_ns_) return;
+  // The uncertainty of the pose served now: the last node's, grown by the odometry since.
+  const GlobalPose now = ComposeGlobalPose(fix(), odometry, time_ns);
+  UpdateState(time_ns, PositionSigma(now.ok ? now.covariance : last_node_covariance_));
 }
 
 LocalizationFix Localizer::fix() const {

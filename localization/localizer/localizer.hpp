@@ -179,9 +179,10 @@ class Localizer {
   // the odometry's window.
   GlobalPose PoseAt(TimeNs time_ns, const PoseHistory& odometry) const;
 
-  // Advances the state to `time_ns` without a grid (the LiDAR is silent): DEGRADED, then
-  // LOST, as the time since the last accepted match grows. Does nothing without a fix.
-  void Tick(TimeNs time_ns);
+  // Advances the state to `time_ns` without a grid (the LiDAR is silent): DEGRADED once
+  // degraded_after has passed since the last accepted match, LOST once the pose's uncertainty,
+  // grown by the odometry since the last node, exceeds lost_sigma_m. Does nothing without a fix.
+  void Tick(TimeNs time_ns, const PoseHistory& odometry);
 
   LocalizationFix fix() const;
 
@@ -204,7 +205,12 @@ class Localizer {
   void Track(TimeNs time_ns, const Se2& local_T_vehicle, const Se2& prediction, const MatchResult& match,
              const PoseHistory& odometry, RevolutionReport& report);
   void Restart(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen::Matrix3d& information);
-  void UpdateState(TimeNs time_ns);
+  void UpdateState(TimeNs time_ns, double position_sigma_m);
+  // Adds the time since the previous revolution to unmatched_ns_ (0 again on an accepted match).
+  void CountUnmatched(TimeNs time_ns, bool accepted);
+  // One revolution counts for at most this much unmatched time: a gap in the revolutions
+  // (LiDAR silence) is not a stretch of failed matches.
+  static constexpr TimeNs kMaxRevolutionStep = 250 * kNsPerMs;
   Eigen::Matrix3d MatchInformation(const Eigen::Matrix3d& covariance) const;
   Eigen::Matrix3d OdometryInformation(const RelativeMotion& motion) const;
 
@@ -228,6 +234,8 @@ class Localizer {
   Se2 last_node_pose_;                                    // global_T_vehicle, solved
   Eigen::Matrix3d last_node_covariance_ = Eigen::Matrix3d::Zero();
   TimeNs last_accepted_ns_ = 0;
+  TimeNs last_grid_ns_ = 0;   // the newest revolution matched (0: none since the initial pose)
+  TimeNs unmatched_ns_ = 0;   // revolution time since the last accepted match, gaps excluded
   bool ever_localized_ = false;  // a match was accepted since the last initial pose
   bool relocalizing_ = false;
   int confirmations_needed_ = 0;  // tracking matches still to accept after a global match

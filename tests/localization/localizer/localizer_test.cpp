@@ -5,9 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <vector>
 
 #include "tests/localization/localizer/synthetic_world.hpp"
 
@@ -165,6 +167,48 @@ TEST_F(LocalizerTest, DegradesThenIsLostWithoutStructureAndRelocalizes) {
   EXPECT_LE(localized_at, 85);
   const TimeNs t = 119 * kRevolutionNs;
   EXPECT_LT((localizer.PoseAt(t, history_).global_T_vehicle.translation() - world_.TruthAt(t).translation()).norm(), 0.06);
+}
+
+// LiDAR silence (no revolutions, odometry goes on): DEGRADED, and LOST only once the pose's
+// uncertainty, grown by odometry, passes lost_sigma_m; lost_after counts failed revolutions,
+// not silence.
+TEST_F(LocalizerTest, ThroughLidarSilenceIsLostOnlyWhenTheUncertaintySaysSo) {
+  struct Silence {
+    std::vector<LocalizerState> states;  // at each odometry sample of the silence
+    std::vector<double> sigmas_m;
+  };
+  auto run = [&](const LocalizerOptions& options) {
+    Localizer localizer = MakeLocalizer(options);
+    history_ = std::move(*PoseHistory::Create({.capacity = 4096}));
+    next_odometry_ns_ = 0;
+    StartAtTruth(localizer);
+    for (int k = 0; k < 20; ++k) Step(localizer, k);
+    EXPECT_EQ(localizer.state(), LocalizerState::kLocalized);
+    Silence silence;
+    for (const TimeNs end = next_odometry_ns_ + 7 * kNsPerSecond; next_odometry_ns_ < end; next_odometry_ns_ += kOdometryNs) {
+      history_.Push(world_.OdometryAt(next_odometry_ns_));
+      localizer.Tick(next_odometry_ns_, history_);
+      const GlobalPose pose = localizer.PoseAt(next_odometry_ns_, history_);
+      silence.states.push_back(localizer.state());
+      silence.sigmas_m.push_back(std::sqrt(std::max(pose.covariance(0, 0), pose.covariance(1, 1))));  // as lost_sigma_m
+    }
+    return silence;
+  };
+  const std::size_t per_second = kNsPerSecond / kOdometryNs;
+  const Silence calm = run({});  // lost_sigma_m 1 m: never reached in 7 s
+  ASSERT_EQ(calm.states.size(), 7 * per_second);
+  for (std::size_t i = per_second; i < calm.states.size(); ++i) {
+    EXPECT_EQ(calm.states[i], LocalizerState::kDegraded) << "at " << static_cast<double>(i) / per_second << " s";
+  }
+  const double sigma_1s = calm.sigmas_m[per_second], sigma_6s = calm.sigmas_m[6 * per_second];
+  EXPECT_GT(sigma_6s, 1.2 * sigma_1s);
+  LocalizerOptions strict;
+  strict.lost_sigma_m = 0.5 * (sigma_1s + sigma_6s);
+  const Silence lost = run(strict);
+  const auto crossing = std::find_if(calm.sigmas_m.begin(), calm.sigmas_m.end(),
+                                     [&](double sigma) { return sigma > strict.lost_sigma_m; }) - calm.sigmas_m.begin();
+  const auto first_lost = std::find(lost.states.begin(), lost.states.end(), LocalizerState::kLost) - lost.states.begin();
+  EXPECT_EQ(first_lost, crossing) << "sigma 1 s " << sigma_1s << " m, 6 s " << sigma_6s << " m";
 }
 
 TEST_F(LocalizerTest, RelocalizesFromAStartTenMetresAndNinetyDegreesWrong) {
