@@ -19,6 +19,11 @@ bool PortSelected(const ReplayOptions& options, std::uint16_t port) {
              options.destination_ports.end();
 }
 
+bool InOutage(const ReplayOptions& options, TimeNs offset_ns) {
+  return options.outage_ns > 0 && offset_ns >= options.outage_from_ns &&
+         offset_ns - options.outage_from_ns < options.outage_ns;
+}
+
 // Maps capture times onto the replay clock's time line.
 class Schedule {
  public:
@@ -85,6 +90,10 @@ ReplayStats Replay(DatagramSource& source, DatagramSink& sink, ReplayClock& cloc
     }
     const TimeNs offset_ns = schedule.CaptureOffset(*datagram);
     if (options.max_duration_ns > 0 && offset_ns > options.max_duration_ns) break;
+    if (InOutage(options, offset_ns)) {
+      ++stats.withheld;
+      continue;
+    }
     schedule.WaitFor(offset_ns);
     if (Status sent = sink.Send(*datagram); sent) {
       ++stats.sent;

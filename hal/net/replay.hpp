@@ -47,12 +47,18 @@ struct ReplayOptions {
   // Sources without timestamps (raw dumps, receive_time_ns == 0) are paced at this
   // interval, e.g. 1327 us for VLP-16 data; 0 sends them as fast as possible.
   TimeNs untimed_interval_ns = 0;
+  // A sensor outage: datagrams whose capture offset falls in [outage_from_ns,
+  // outage_from_ns + outage_ns) are not sent, and the schedule runs on through them, so the
+  // receiver hears nothing for that long and then the capture resumes on time.
+  TimeNs outage_from_ns = 0;
+  TimeNs outage_ns = 0;
 };
 
 struct ReplayStats {
   std::uint64_t sent = 0;
   std::uint64_t send_errors = 0;
   std::uint64_t skipped = 0;  // destination port not selected
+  std::uint64_t withheld = 0;  // in the outage
   std::string first_send_error;
 };
 

@@ -69,6 +69,8 @@ constexpr const char* kReplayUsage = R"(usage: flat2d-inspect replay [options] C
   --speed X         timing factor: 2 plays twice as fast, 0 as fast as possible (default 1)
   --count N         stop after N datagrams
   --all-ports       replay every UDP datagram, not only the sensor ports 2368 and 8308
+  --outage FROM:S   a sensor outage: send nothing for S seconds of capture time from FROM
+                    seconds into the capture, then resume on schedule
 )";
 
 constexpr const char* kRecordUsage = R"(usage: flat2d-inspect record [options] --out FILE.pcap
@@ -105,6 +107,12 @@ int RunReplay(int argc, char** argv) {
       replay_options.max_datagrams = Count(flag, value());
     } else if (flag == "--all-ports") {
       replay_options.destination_ports.clear();
+    } else if (flag == "--outage") {
+      const std::string outage = value();
+      const auto colon = outage.find(':');
+      if (colon == std::string::npos) Fail(1, "--outage takes FROM:SECONDS, got " + outage);
+      replay_options.outage_from_ns = static_cast<TimeNs>(Number(flag, outage.substr(0, colon).c_str()) * 1e9);
+      replay_options.outage_ns = static_cast<TimeNs>(Number(flag, outage.c_str() + colon + 1) * 1e9);
     } else {
       return false;
     }
@@ -119,7 +127,9 @@ int RunReplay(int argc, char** argv) {
   const ReplayStats stats = Replay(**source, *sender, clock, replay_options);
   std::cerr << "flat2d-inspect: sent " << stats.sent << " datagrams to "
             << FormatIpv4(sender_options.destination.address) << ", " << stats.send_errors
-            << " send errors, " << stats.skipped << " skipped (other ports)\n";
+            << " send errors, " << stats.skipped << " skipped (other ports)";
+  if (stats.withheld > 0) std::cerr << ", " << stats.withheld << " withheld (the outage)";
+  std::cerr << "\n";
   if (stats.send_errors > 0) std::cerr << "flat2d-inspect: first error: " << stats.first_send_error << "\n";
   return stats.send_errors == 0 ? 0 : 2;
 }

@@ -149,6 +149,20 @@ TEST(Replay, StopsAtTheCountAndDurationLimits) {
   }
 }
 
+TEST(Replay, WithholdsAnOutageAndResumesOnTime) {
+  VectorSource source = SampleSource();
+  FakeClock clock;
+  RecordingSink sink(clock);
+  ReplayOptions options;
+  options.outage_from_ns = 10 * kNsPerMs;  // 10 and 20 ms are withheld, 30 ms is not
+  options.outage_ns = 20 * kNsPerMs;
+  const ReplayStats stats = Replay(source, sink, clock, options);
+  EXPECT_EQ(sink.tags, (std::vector<std::uint8_t>{0, 3, 4}));
+  EXPECT_EQ(sink.send_offsets_ns, (std::vector<TimeNs>{0, 30 * kNsPerMs, 31 * kNsPerMs}));
+  EXPECT_EQ(stats.withheld, 2u);
+  EXPECT_EQ(stats.sent, 3u);
+}
+
 TEST(Replay, CountsSendErrorsAndGoesOn) {
   VectorSource source = SampleSource();
   FakeClock clock;
