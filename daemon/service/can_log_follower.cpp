@@ -1,5 +1,6 @@
 #include "daemon/service/can_log_follower.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include "hal/velodyne/packet_layout.hpp"
@@ -34,6 +35,27 @@ TimeNs CanLogFollower::Plausible(TimeNs packet_ns) {
   return 0;
 }
 
-CanLogFollower::CanLogFollower(hal::can::CandumpReader log) : log_(std::move(log)) { have_frame_ = log_.Next(next_); }
+void CanLogFollower::KeepPace(TimeNs packet_ns, TimeNs wall_ns) {
+  const bool continuous = paced_wall_ns_ != 0 && packet_ns - paced_packet_ns_ < kMaxJump &&
+                          wall_ns - paced_wall_ns_ < kSilence;
+  if (!continuous) {
+    anchor_packet_ns_ = packet_ns;
+    anchor_wall_ns_ = wall_ns;
+  } else if (wall_ns - anchor_wall_ns_ >= kRateSpan) {
+    // Bounded: a stalled reader (the packets queued, then drained at once) must not make the
+    // log run away through the next silence.
+    rate_ = std::clamp(static_cast<double>(packet_ns - anchor_packet_ns_) / static_cast<double>(wall_ns - anchor_wall_ns_),
+                       0.1, 20.0);
+    anchor_packet_ns_ = packet_ns;
+    anchor_wall_ns_ = wall_ns;
+  }
+  paced_packet_ns_ = packet_ns;
+  paced_wall_ns_ = wall_ns;
+}
+
+CanLogFollower::CanLogFollower(hal::can::CandumpReader log, bool run_through_silence)
+    : log_(std::move(log)), run_through_silence_(run_through_silence) {
+  have_frame_ = log_.Next(next_);
+}
 
 }  // namespace flat2d::daemon

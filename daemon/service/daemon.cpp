@@ -1,6 +1,7 @@
 #include "daemon/service/daemon.hpp"
 
 #include <poll.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/signalfd.h>
 #include <unistd.h>
@@ -120,7 +121,7 @@ Status Daemon::Open(DaemonInputs inputs) {
   if (config_.can().has_candump()) {
     auto log = hal::can::CandumpReader::Open(config_.can().candump().path());
     if (!log.ok()) return log.error();
-    follower.emplace(std::move(*log));
+    follower.emplace(std::move(*log), /*run_through_silence=*/config_.lidar().has_udp());
   }
   worker_ = std::make_unique<LocalizationWorker>(*queue_, *board_, std::move(*pipeline), std::move(follower));
   const InitialPoseDefaults defaults = config_.has_initial_pose()
@@ -181,22 +182,28 @@ void Daemon::ApplyStartPose(const DaemonConfig& config) {
 
 void Daemon::StartThreads() {
   const TimeNs now_ns = MonotonicNs();
-  auto watch = [&](std::string name, std::function<std::uint64_t()> heartbeat, std::function<bool()> finished) {
-    rates_->watched.push_back({std::move(name), std::move(heartbeat), std::move(finished), 0, now_ns});
+  // Each thread carries a name for top -H and /proc/PID/task/*/comm (15 characters at most)
+  // and is watched under its own: WATCHDOG=1 only while every one makes progress.
+  auto spawn = [&](const char* thread_name, std::string watched_name, std::function<void(std::stop_token)> body,
+                   std::function<std::uint64_t()> heartbeat, std::function<bool()> finished) {
+    std::jthread& thread = threads_.emplace_back(std::move(body));
+    ::pthread_setname_np(thread.native_handle(), thread_name);
+    rates_->watched.push_back({std::move(watched_name), std::move(heartbeat), std::move(finished), 0, now_ns});
   };
-  threads_.emplace_back([this](std::stop_token stop) { lidar_->Run(stop, *queue_); });
-  watch("lidar", [this] { return lidar_->heartbeat(); }, [this] { return lidar_->finished(); });
+  const auto never = [] { return false; };
+  spawn("f2d-lidar", "lidar", [this](std::stop_token stop) { lidar_->Run(stop, *queue_); },
+        [this] { return lidar_->heartbeat(); }, [this] { return lidar_->finished(); });
   if (can_) {
-    threads_.emplace_back([this](std::stop_token stop) { can_->Run(stop, *queue_); });
-    watch("can", [this] { return can_->heartbeat(); }, [this] { return can_->finished(); });
+    spawn("f2d-can", "can", [this](std::stop_token stop) { can_->Run(stop, *queue_); },
+          [this] { return can_->heartbeat(); }, [this] { return can_->finished(); });
   }
-  threads_.emplace_back([this](std::stop_token stop) { worker_->Run(stop); });
-  watch("localization", [this] { return worker_->heartbeat(); }, [] { return false; });
-  threads_.emplace_back([this](std::stop_token stop) { server_->Run(stop); });
-  watch("api", [this] { return server_->heartbeat(); }, [] { return false; });
+  spawn("f2d-localize", "localization", [this](std::stop_token stop) { worker_->Run(stop); },
+        [this] { return worker_->heartbeat(); }, never);
+  spawn("f2d-api", "api", [this](std::stop_token stop) { server_->Run(stop); }, [this] { return server_->heartbeat(); },
+        never);
   if (gpio_->has_pps()) {
-    threads_.emplace_back([this](std::stop_token stop) { gpio_->RunPps(stop); });
-    watch("pps", [this] { return gpio_->pps_heartbeat(); }, [] { return false; });
+    spawn("f2d-pps", "pps", [this](std::stop_token stop) { gpio_->RunPps(stop); },
+          [this] { return gpio_->pps_heartbeat(); }, never);
   }
   rates_->last_ns = now_ns;
 }

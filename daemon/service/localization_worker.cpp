@@ -9,6 +9,11 @@ namespace {
 
 constexpr auto kIdleWait = std::chrono::milliseconds(100);
 
+TimeNs SteadyNowNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 // Nearest-rank percentile of the first `count` values (copied: the ring keeps its order).
 double Percentile(const std::array<double, 100>& values, std::size_t count, double fraction) {
   if (count == 0) return 0.0;
@@ -36,6 +41,8 @@ void LocalizationWorker::Run(std::stop_token stop) {
     queue_.PopNext(
         kIdleWait, [this](const QueuedDatagram& datagram) { OnDatagram(datagram); },
         [this](const hal::can::CanFrame& frame) { OnFrame(frame); });
+    if (follower_)
+      follower_->ReleaseThroughSilence(SteadyNowNs(), [this](const hal::can::CanFrame& frame) { OnFrame(frame); });
   }
 }
 
@@ -55,7 +62,8 @@ void LocalizationWorker::ReplacePipeline(std::unique_ptr<localization::Localizat
 
 void LocalizationWorker::OnDatagram(const QueuedDatagram& datagram) {
   const hal::net::UdpDatagram view = datagram.view();
-  if (follower_) follower_->ReleaseUntil(view.payload, [this](const hal::can::CanFrame& frame) { OnFrame(frame); });
+  if (follower_)
+    follower_->ReleaseUntil(view.payload, SteadyNowNs(), [this](const hal::can::CanFrame& frame) { OnFrame(frame); });
   pipeline_->PushDatagram(view);
   health_.newest_datagram_ns = view.receive_time_ns;
 }
