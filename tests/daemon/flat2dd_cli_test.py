@@ -10,148 +10,25 @@ usage: flat2dd_cli_test.py FLAT2DD FLAT2D FLAT2D_SIM FLAT2D_MAP FLAT2D_INSPECT S
 "quick" (the sanitizer build) runs a 12 s drive through the pcap source at real time and
 checks the service's behaviour, not the accuracy, which the release build checks.
 """
-import bisect
 import json
-import math
 import os
 import random
 import signal
 import socket
 import subprocess
 import sys
-import threading
 import time
 import unittest
+
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from flat2dd_harness import (RUNNING, Daemon, Tools, Truth, Watcher, accuracy, configure, free_port,  # noqa: E402
+                             percentile, run, write_config)
 
 FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE, WORK = sys.argv[1:8]
 QUICK = len(sys.argv) > 8 and sys.argv[8] == "quick"
 PACKAGING = os.path.join(SOURCE, "packaging", "config")
-
-
-def run(*args, timeout=600):
-    return subprocess.run(list(args), capture_output=True, text=True, timeout=timeout)
-
-
-def free_port(kind):
-    with socket.socket(socket.AF_INET, kind) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-class Truth:
-    def __init__(self, path):
-        self.t, self.x, self.y = [], [], []
-        with open(path) as f:
-            for line in f:
-                v = line.split()
-                self.t.append(float(v[0]))
-                self.x.append(float(v[1]))
-                self.y.append(float(v[2]))
-
-    def error(self, time_s, x, y):
-        i = bisect.bisect_left(self.t, time_s)
-        if i <= 0 or i >= len(self.t):
-            return None
-        s = (time_s - self.t[i - 1]) / (self.t[i] - self.t[i - 1])
-        tx = self.x[i - 1] + s * (self.x[i] - self.x[i - 1])
-        ty = self.y[i - 1] + s * (self.y[i] - self.y[i - 1])
-        return math.hypot(x - tx, y - ty)
-
-
-def percentile(values, q):
-    values = sorted(values)
-    return values[min(len(values) - 1, int(q * len(values)))]
-
-
-class Watcher:
-    """`flat2d watch --json` in the background: every pose it prints, with the wall time."""
-
-    def __init__(self, sock, rate=20):
-        self.poses = []
-        self.process = subprocess.Popen([FLAT2D, "--socket", sock, "--json", "watch", "--rate", str(rate)],
-                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        RUNNING.append(self.process)
-        self.thread = threading.Thread(target=self._read, daemon=True)
-        self.thread.start()
-
-    def _read(self):
-        for line in self.process.stdout:
-            try:
-                self.poses.append((time.monotonic(), json.loads(line)))
-            except json.JSONDecodeError:
-                pass
-
-    def stop(self):
-        self.process.terminate()
-        self.process.wait(timeout=5)
-        return self.process.returncode
-
-
-RUNNING = []  # every process started, killed at the end of each test whatever happened
-
-
-class Daemon:
-    def __init__(self, config, sock):
-        self.config, self.sock = config, sock
-        self.log = open(config + ".log", "a")
-        self.started = time.monotonic()
-        self.process = subprocess.Popen([FLAT2DD, "--config", config], stdout=self.log, stderr=self.log)
-        RUNNING.append(self.process)
-
-    def wait_ready(self, timeout=30):
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if self.process.poll() is not None:
-                raise AssertionError("flat2dd exited with %d" % self.process.returncode)
-            if os.path.exists(self.sock) and self.status() is not None:
-                return
-            time.sleep(0.05)
-        raise AssertionError("flat2dd did not become ready")
-
-    def status(self):
-        result = run(FLAT2D, "--socket", self.sock, "--json", "--timeout", "1000", "status", timeout=10)
-        return json.loads(result.stdout) if result.returncode == 0 else None
-
-    def wait_state(self, state, timeout):
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            status = self.status()
-            if status and status.get("state") == state:
-                return True
-            time.sleep(0.05)
-        return False
-
-    def stop(self):
-        start = time.monotonic()
-        self.process.send_signal(signal.SIGTERM)
-        code = self.process.wait(timeout=10)
-        return code, time.monotonic() - start
-
-
-def write_config(path, lidar, can, drive, map_path, sock, pose_file, initial=None):
-    lines = [lidar, can,
-             'dbc: "%s"' % os.path.join(drive, "vehicle.dbc"),
-             'odometry_config: "%s"' % os.path.join(PACKAGING, "odometry", "flat2d_sim.textproto"),
-             'grid_config: "%s"' % os.path.join(PACKAGING, "grid", "structure_grid.textproto"),
-             'localizer_config: "%s"' % os.path.join(PACKAGING, "localizer", "localizer.textproto"),
-             'map: "%s"' % map_path,
-             'api { unix_socket: "%s" }' % sock,
-             'persistence { l2g_path: "%s" period_s: 0.5 }' % pose_file]
-    if initial:
-        lines.append("initial_pose { x: %.6f y: %.6f theta: %.6f sigma_m: 0.2 sigma_rad: 0.02 }" % initial)
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-
-
-def accuracy(poses, truth):
-    errors = []
-    for _, p in poses:
-        if p.get("valid") and p.get("state") == "LOCALIZED":
-            g = p["global_T_vehicle"]
-            e = truth.error(int(p["time_ns"]) * 1e-9, g["x"], g["y"])
-            if e is not None:
-                errors.append(e)
-    return errors
+configure(Tools(FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE))
 
 
 class DaemonEndToEnd(unittest.TestCase):

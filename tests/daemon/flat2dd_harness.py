@@ -1,0 +1,178 @@
+"""What the flat2dd end-to-end tests share: the tools, the simulator's truth, the daemon and
+a `flat2d watch` subscriber as processes, the daemon's configuration and the accuracy of
+the poses received. Every process started is listed in RUNNING, for the tests to kill.
+"""
+import bisect
+import json
+import math
+import os
+import signal
+import socket
+import subprocess
+import threading
+import time
+
+
+class Tools:
+    """The binaries under test and the source tree, from the test's command line."""
+
+    def __init__(self, flat2dd, flat2d, sim, map_tool, inspect, source):
+        self.flat2dd, self.flat2d, self.sim, self.map, self.inspect = flat2dd, flat2d, sim, map_tool, inspect
+        self.packaging = os.path.join(source, "packaging", "config")
+
+
+TOOLS = None  # set by configure()
+
+
+def configure(tools):
+    global TOOLS
+    TOOLS = tools
+
+
+def run(*args, timeout=600):
+    return subprocess.run(list(args), capture_output=True, text=True, timeout=timeout)
+
+
+def free_port(kind):
+    with socket.socket(socket.AF_INET, kind) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Truth:
+    """The simulator's truth.tum (t x y z qx qy qz qw), interpolated in time."""
+
+    def __init__(self, path):
+        self.t, self.x, self.y, self.yaw = [], [], [], []
+        with open(path) as f:
+            for line in f:
+                v = [float(x) for x in line.split()]
+                qx, qy, qz, qw = v[4:8]
+                self.t.append(v[0])
+                self.x.append(v[1])
+                self.y.append(v[2])
+                self.yaw.append(math.atan2(2 * (qw * qz + qx * qy), 1 - 2 * (qy * qy + qz * qz)))
+
+    def at(self, time_s):
+        """(x, y, yaw) at time_s, or None outside the drive."""
+        i = bisect.bisect_left(self.t, time_s)
+        if i <= 0 or i >= len(self.t):
+            return None
+        s = (time_s - self.t[i - 1]) / (self.t[i] - self.t[i - 1])
+        dyaw = wrap(self.yaw[i] - self.yaw[i - 1])
+        return (self.x[i - 1] + s * (self.x[i] - self.x[i - 1]), self.y[i - 1] + s * (self.y[i] - self.y[i - 1]),
+                wrap(self.yaw[i - 1] + s * dyaw))
+
+    def error(self, time_s, x, y):
+        truth = self.at(time_s)
+        return None if truth is None else math.hypot(x - truth[0], y - truth[1])
+
+
+def wrap(angle):
+    return math.atan2(math.sin(angle), math.cos(angle))
+
+
+def percentile(values, q):
+    values = sorted(values)
+    return values[min(len(values) - 1, int(q * len(values)))]
+
+
+class Watcher:
+    """`flat2d watch --json` in the background: every pose it prints, with the wall time."""
+
+    def __init__(self, sock, rate=20):
+        self.poses = []
+        self.process = subprocess.Popen([TOOLS.flat2d, "--socket", sock, "--json", "watch", "--rate", str(rate)],
+                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        RUNNING.append(self.process)
+        self.thread = threading.Thread(target=self._read, daemon=True)
+        self.thread.start()
+
+    def _read(self):
+        for line in self.process.stdout:
+            try:
+                self.poses.append((time.monotonic(), json.loads(line)))
+            except json.JSONDecodeError:
+                pass
+
+    def stop(self):
+        self.process.terminate()
+        self.process.wait(timeout=5)
+        return self.process.returncode
+
+
+RUNNING = []  # every process started, killed at the end of each test whatever happened
+
+
+class Daemon:
+    def __init__(self, config, sock):
+        self.config, self.sock = config, sock
+        self.started = time.monotonic()
+        with open(config + ".log", "a") as log:  # the daemon keeps its own descriptor
+            self.process = subprocess.Popen([TOOLS.flat2dd, "--config", config], stdout=log, stderr=log)
+        RUNNING.append(self.process)
+
+    def wait_ready(self, timeout=30):
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if self.process.poll() is not None:
+                raise AssertionError("flat2dd exited with %d" % self.process.returncode)
+            if os.path.exists(self.sock) and self.status() is not None:
+                return
+            time.sleep(0.05)
+        raise AssertionError("flat2dd did not become ready")
+
+    def status(self):
+        result = run(TOOLS.flat2d, "--socket", self.sock, "--json", "--timeout", "1000", "status", timeout=10)
+        return json.loads(result.stdout) if result.returncode == 0 else None
+
+    def wait_state(self, state, timeout):
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            status = self.status()
+            if status and status.get("state") == state:
+                return True
+            time.sleep(0.05)
+        return False
+
+    def stop(self):
+        start = time.monotonic()
+        self.process.send_signal(signal.SIGTERM)
+        code = self.process.wait(timeout=10)
+        return code, time.monotonic() - start
+
+
+def write_config(path, lidar, can, drive, map_path, sock, pose_file, initial=None):
+    lines = [lidar, can,
+             'dbc: "%s"' % os.path.join(drive, "vehicle.dbc"),
+             'odometry_config: "%s"' % os.path.join(TOOLS.packaging, "odometry", "flat2d_sim.textproto"),
+             'grid_config: "%s"' % os.path.join(TOOLS.packaging, "grid", "structure_grid.textproto"),
+             'localizer_config: "%s"' % os.path.join(TOOLS.packaging, "localizer", "localizer.textproto"),
+             'map: "%s"' % map_path,
+             'api { unix_socket: "%s" }' % sock,
+             'persistence { l2g_path: "%s" period_s: 0.5 }' % pose_file]
+    if initial:
+        lines.append("initial_pose { x: %.6f y: %.6f theta: %.6f sigma_m: 0.2 sigma_rad: 0.02 }" % initial)
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def localized(poses):
+    """The valid LOCALIZED poses of a Watcher's list."""
+    return [p for _, p in poses if p.get("valid") and p.get("state") == "LOCALIZED"]
+
+
+def accuracy(poses, truth):
+    """Position errors (m) of the LOCALIZED poses against the truth."""
+    return [e for e, _ in errors(poses, truth)]
+
+
+def errors(poses, truth):
+    """(position error m, heading error rad) of each LOCALIZED pose against the truth."""
+    result = []
+    for p in localized(poses):
+        g = p["global_T_vehicle"]
+        t = truth.at(int(p["time_ns"]) * 1e-9)
+        if t is not None:
+            result.append((math.hypot(g["x"] - t[0], g["y"] - t[1]), abs(wrap(g.get("theta", 0.0) - t[2]))))
+    return result
