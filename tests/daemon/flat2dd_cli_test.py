@@ -12,7 +12,6 @@ checks the service's behaviour, not the accuracy, which the release build checks
 """
 import json
 import os
-import random
 import signal
 import socket
 import subprocess
@@ -22,8 +21,8 @@ import unittest
 
 sys.dont_write_bytecode = True  # nothing written into the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from flat2dd_harness import (RUNNING, Daemon, Tools, Truth, Watcher, accuracy, configure, free_port,  # noqa: E402
-                             percentile, run, write_config)
+from flat2dd_harness import (RUNNING, Daemon, Tools, Truth, Watcher, accuracy, configure, finish_drive,  # noqa: E402
+                             flood, free_port, kill_and_warm_start, percentile, run, write_config)
 
 FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE, WORK = sys.argv[1:8]
 QUICK = len(sys.argv) > 8 and sys.argv[8] == "quick"
@@ -127,32 +126,7 @@ class DaemonEndToEnd(unittest.TestCase):
         self.assertTrue(daemon.wait_state("LOCALIZED", 5), "not LOCALIZED within 5 s of the replay")
 
         # Bad input: malformed requests on the API, malformed datagrams on the LiDAR port.
-        rng = random.Random(1)
-        bad_udp = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-        for _ in range(500):
-            size = rng.choice([0, 7, 511, 513, 1205, 1206, 1207])
-            payload = bytes(rng.getrandbits(8) for _ in range(size))
-            bad_udp.sendto(payload, ("127.0.0.1", port))
-        for _ in range(100):
-            with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as s:
-                s.connect(sock)
-                s.sendall(bytes([6]) + bytes(rng.getrandbits(8) for _ in range(6)))  # a frame, garbage inside
-                s.sendall(bytes([0x80, 0x80, 0x80, 0x80, 0x10]))                   # then 4 GiB announced
-                s.settimeout(2)
-                try:
-                    while s.recv(4096):
-                        pass
-                except socket.timeout:
-                    self.fail("the daemon kept a connection that announced 4 GiB")
-        deadline = time.monotonic() + 3  # the health figures are published once a revolution
-        while True:
-            status = daemon.status()
-            if int(status["lidar"]["malformed"]) >= 500 or time.monotonic() > deadline:
-                break
-            time.sleep(0.1)
-        self.assertGreaterEqual(int(status["malformed_requests"]), 200)
-        self.assertEqual(int(status["lidar"]["malformed"]), 500)
-        self.assertEqual(status["state"], "LOCALIZED")
+        flood(self, daemon, port, sock)
 
         # SIGHUP: map and options reloaded, the subscriber keeps its connection.
         before = len(watcher.poses)
@@ -165,23 +139,8 @@ class DaemonEndToEnd(unittest.TestCase):
         # kill -9 mid-drive, then a warm start from the persisted pose.
         time.sleep(1.0)
         self.assertTrue(os.path.exists(pose_file))
-        daemon.process.kill()
-        daemon.process.wait()
-        restarted = Daemon(config, sock)
-        restarted.wait_ready()
-        self.assertTrue(restarted.wait_state("LOCALIZED", 2.0), "not LOCALIZED within 2 s of the warm start")
-        relocalized_s = time.monotonic() - restarted.started
-        replay.wait(timeout=60)
-        time.sleep(0.5)
-        final = restarted.status()
-        if watcher.process.poll() is not None:
-            self.fail("the subscriber gave up: " + watcher.process.stderr.read())
-        watcher.stop()
-        code, stop_s = restarted.stop()
-        self.assertEqual(code, 0)
-        self.assertLess(stop_s, 1.0)
-        with open(config + ".log") as f:
-            self.assertIn("warm start", f.read())
+        restarted, relocalized_s = kill_and_warm_start(self, daemon, config, sock)
+        final = finish_drive(self, replay, restarted, watcher, config, timeout=60)
         errors = accuracy(watcher.poses, self.truth)
         print("udp x%d: warm start LOCALIZED after %.2f s; %d LOCALIZED poses, p50 %.3f m p95 %.3f m; "
               "lidar %s/s received %s dropped %s" % (speed, relocalized_s, len(errors), percentile(errors, 0.5),

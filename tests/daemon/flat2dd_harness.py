@@ -6,6 +6,7 @@ import bisect
 import json
 import math
 import os
+import random
 import signal
 import socket
 import subprocess
@@ -176,3 +177,66 @@ def errors(poses, truth):
         if t is not None:
             result.append((math.hypot(g["x"] - t[0], g["y"] - t[1]), abs(wrap(g.get("theta", 0.0) - t[2]))))
     return result
+
+
+def flood(test, daemon, port, sock):
+    """500 malformed datagrams on the LiDAR port and 100 API connections that each send a frame
+    of garbage and then announce 4 GiB (each must be closed): all counted, the state kept."""
+    before = daemon.status()
+    rng = random.Random(1)
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as bad_udp:
+        for _ in range(500):
+            size = rng.choice([0, 7, 511, 513, 1205, 1206, 1207])
+            bad_udp.sendto(bytes(rng.getrandbits(8) for _ in range(size)), ("127.0.0.1", port))
+    for _ in range(100):
+        with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as s:
+            s.connect(sock)
+            s.sendall(bytes([6]) + bytes(rng.getrandbits(8) for _ in range(6)))  # a frame, garbage inside
+            s.sendall(bytes([0x80, 0x80, 0x80, 0x80, 0x10]))                   # then 4 GiB announced
+            s.settimeout(2)
+            try:
+                while s.recv(4096):
+                    pass
+            except socket.timeout:
+                test.fail("the daemon kept a connection that announced 4 GiB")
+
+    def counted(status, key):
+        return int(status.get("lidar", {}).get(key, 0)) if key == "malformed" else int(status.get(key, 0))
+
+    deadline = time.monotonic() + 3  # the health figures are published once a revolution
+    while True:
+        after = daemon.status()
+        if counted(after, "malformed") - counted(before, "malformed") >= 500 or time.monotonic() > deadline:
+            break
+        time.sleep(0.1)
+    test.assertEqual(counted(after, "malformed") - counted(before, "malformed"), 500)
+    test.assertGreaterEqual(counted(after, "malformed_requests") - counted(before, "malformed_requests"), 200)
+    test.assertEqual(after["state"], "LOCALIZED")
+
+
+def kill_and_warm_start(test, daemon, config, sock):
+    """kill -9, then a restart that must be LOCALIZED within 2 s from the persisted pose.
+    Returns the restarted Daemon and how long it took."""
+    daemon.process.kill()
+    daemon.process.wait()
+    restarted = Daemon(config, sock)
+    restarted.wait_ready()
+    test.assertTrue(restarted.wait_state("LOCALIZED", 2.0), "not LOCALIZED within 2 s of the warm start")
+    return restarted, time.monotonic() - restarted.started
+
+
+def finish_drive(test, replay, daemon, watcher, config, timeout):
+    """Waits for the replay, checks the subscriber stayed, stops the daemon (exit 0 within 1 s,
+    and its log says it warm-started). Returns the last status."""
+    replay.wait(timeout=timeout)
+    time.sleep(0.5)
+    final = daemon.status()
+    if watcher.process.poll() is not None:
+        test.fail("the subscriber gave up: " + watcher.process.stderr.read())
+    watcher.stop()
+    code, stop_s = daemon.stop()
+    test.assertEqual(code, 0)
+    test.assertLess(stop_s, 1.0)
+    with open(config + ".log") as f:
+        test.assertIn("warm start", f.read())
+    return final
