@@ -25,7 +25,9 @@ void SetPose(const localization::Se2& pose, v1::Pose2D& out) {
 }
 
 // The reply for a composed pose; the covariance field's 9 slots are reused, not regrown.
-void FillPose(const localization::GlobalPose& pose, const localization::LocalizationFix& fix, v1::PoseReply& reply) {
+void FillPose(const ServedPose& served, v1::PoseReply& reply) {
+  const localization::GlobalPose& pose = served.pose;
+  const localization::LocalizationFix& fix = served.fix;
   reply.set_valid(pose.ok);
   reply.set_time_ns(pose.time_ns);
   reply.set_state(ToApi(pose.state));
@@ -78,7 +80,7 @@ void ApiHandler::Handle(const v1::Request& request, v1::Response& response) {
   SetError(response, v1::Error::MALFORMED, "the request names no kind");
 }
 
-void ApiHandler::FillPoseNow(v1::PoseReply& reply) const { FillPose(board_.PoseNow(), board_.fix(), reply); }
+void ApiHandler::FillPoseNow(v1::PoseReply& reply) const { FillPose(board_.ServeNow(), reply); }
 
 void ApiHandler::HandlePoseAt(const v1::PoseAtRequest& request, v1::Response& response) const {
   const localization::PoseAtTime odometry = board_.OdometryAt(request.time_ns());
@@ -94,12 +96,12 @@ void ApiHandler::HandlePoseAt(const v1::PoseAtRequest& request, v1::Response& re
     }
     return;
   }
-  const localization::GlobalPose pose = board_.PoseAt(request.time_ns());
-  if (!pose.ok) {
+  const ServedPose served = board_.ServeAt(request.time_ns());
+  if (!served.pose.ok) {
     SetError(response, v1::Error::NO_FIX, "no fix at that time");
     return;
   }
-  FillPose(pose, board_.fix(), *response.mutable_pose());
+  FillPose(served, *response.mutable_pose());
 }
 
 void ApiHandler::HandleSetPose(const v1::SetInitialPoseRequest& request, v1::Response& response) {

@@ -34,14 +34,14 @@ void PoseBoard::ClearOdometry() {
   fix_ = {};
 }
 
-localization::GlobalPose PoseBoard::PoseAt(TimeNs time_ns) const {
+ServedPose PoseBoard::ServeAt(TimeNs time_ns) const {
   const std::lock_guard lock(mutex_);
-  return localization::ComposeGlobalPose(fix_, history_, time_ns);
+  return {localization::ComposeGlobalPose(fix_, history_, time_ns), fix_};
 }
 
-localization::GlobalPose PoseBoard::PoseNow() const {
+ServedPose PoseBoard::ServeNow() const {
   const std::lock_guard lock(mutex_);
-  return localization::ComposeGlobalPose(fix_, history_, history_.newest_ns());
+  return {localization::ComposeGlobalPose(fix_, history_, history_.newest_ns()), fix_};
 }
 
 localization::PoseAtTime PoseBoard::OdometryAt(TimeNs time_ns) const {

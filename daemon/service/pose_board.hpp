@@ -38,6 +38,13 @@ struct HealthFigures {
   std::uint64_t can_frames = 0;  // taken by the pipeline, from the CAN thread or the followed log
 };
 
+// A pose and the fix it was composed from, read under one lock: a reply's L2G and time since
+// the last match belong to its pose even while the localization thread publishes a new fix.
+struct ServedPose {
+  localization::GlobalPose pose;
+  localization::LocalizationFix fix;
+};
+
 class PoseBoard {
  public:
   static Result<PoseBoard> Create(const localization::PoseHistoryOptions& history);
@@ -49,8 +56,10 @@ class PoseBoard {
   void ClearOdometry();  // the pipeline was rebuilt (reload): its odometry frame is new
 
   // API thread: the pose at `time_ns`, or at the newest odometry sample.
-  localization::GlobalPose PoseAt(TimeNs time_ns) const;
-  localization::GlobalPose PoseNow() const;
+  localization::GlobalPose PoseAt(TimeNs time_ns) const { return ServeAt(time_ns).pose; }
+  localization::GlobalPose PoseNow() const { return ServeNow().pose; }
+  ServedPose ServeAt(TimeNs time_ns) const;
+  ServedPose ServeNow() const;
   // Where `time_ns` falls in the odometry window (the out-of-window error says how far off).
   localization::PoseAtTime OdometryAt(TimeNs time_ns) const;
   localization::LocalizationFix fix() const;
