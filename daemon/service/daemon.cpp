@@ -301,9 +301,10 @@ void Daemon::Reload() {
 void Daemon::PersistPose() {
   const std::string& path = config_.persistence().l2g_path();
   if (path.empty()) return;
-  const localization::GlobalPose pose = board_->PoseNow();
+  const ServedPose served = board_->ServeNow();  // the pose and the L2G it was composed with
+  const localization::GlobalPose& pose = served.pose;
+  const localization::LocalizationFix& fix = served.fix;
   if (!pose.ok || pose.state != localization::LocalizerState::kLocalized) return;
-  const localization::LocalizationFix fix = board_->fix();
   PersistedPose persisted;
   persisted.set_time_ns(pose.time_ns);
   persisted.set_x(pose.global_T_vehicle.translation().x());
