@@ -199,42 +199,39 @@ Error ResponseError(const v1::Response& response) {
   return MakeError("unexpected response kind");
 }
 
+// The reply of one kind a request expects (`has`, `get`), or the daemon's error.
+template <typename Reply>
+Result<Reply> Expect(Result<v1::Response> response, bool (v1::Response::*has)() const,
+                     const Reply& (v1::Response::*get)() const) {
+  if (!response.ok()) return response.error();
+  if (!((*response).*has)()) return ResponseError(*response);
+  return ((*response).*get)();
+}
+
 }  // namespace
 
 Result<v1::PoseReply> Client::PoseNow() {
   v1::Request request;
   request.mutable_pose_now();
-  auto response = Call(std::move(request));
-  if (!response.ok()) return response.error();
-  if (!response->has_pose()) return ResponseError(*response);
-  return response->pose();
+  return Expect(Call(std::move(request)), &v1::Response::has_pose, &v1::Response::pose);
 }
 
 Result<v1::PoseReply> Client::PoseAt(std::int64_t time_ns) {
   v1::Request request;
   request.mutable_pose_at()->set_time_ns(time_ns);
-  auto response = Call(std::move(request));
-  if (!response.ok()) return response.error();
-  if (!response->has_pose()) return ResponseError(*response);
-  return response->pose();
+  return Expect(Call(std::move(request)), &v1::Response::has_pose, &v1::Response::pose);
 }
 
 Result<v1::Health> Client::GetStatus() {
   v1::Request request;
   request.mutable_status();
-  auto response = Call(std::move(request));
-  if (!response.ok()) return response.error();
-  if (!response->has_status()) return ResponseError(*response);
-  return response->status();
+  return Expect(Call(std::move(request)), &v1::Response::has_status, &v1::Response::status);
 }
 
 Result<v1::MapInfo> Client::GetMapInfo() {
   v1::Request request;
   request.mutable_map_info();
-  auto response = Call(std::move(request));
-  if (!response.ok()) return response.error();
-  if (!response->has_map_info()) return ResponseError(*response);
-  return response->map_info();
+  return Expect(Call(std::move(request)), &v1::Response::has_map_info, &v1::Response::map_info);
 }
 
 Status Client::SetInitialPose(double x, double y, double theta, double sigma_m, double sigma_rad) {
@@ -245,9 +242,8 @@ Status Client::SetInitialPose(double x, double y, double theta, double sigma_m, 
   set.mutable_global_t_vehicle()->set_theta(theta);
   set.set_sigma_m(sigma_m);
   set.set_sigma_rad(sigma_rad);
-  auto response = Call(std::move(request));
-  if (!response.ok()) return response.error();
-  if (!response->has_ack()) return ResponseError(*response);
+  auto acked = Expect(Call(std::move(request)), &v1::Response::has_ack, &v1::Response::ack);
+  if (!acked.ok()) return acked.error();
   return Status::Ok();
 }
 
