@@ -17,33 +17,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.dont_write_bytecode = True  # nothing written into the source tree
 sys.path.insert(0, os.path.join(ROOT, "tests", "daemon"))
 from flat2dd_harness import RUNNING, Daemon, Tools, Truth, configure, write_config  # noqa: E402
+from proc_stats import memory_kb, thread_cpu_s  # noqa: E402
 
-TICKS = os.sysconf("SC_CLK_TCK")
 SAMPLE_S = 5.0
 WARM_UP_S = 60.0  # wall seconds: the map window's tiles, the graph's window and the rings fill
-
-
-def thread_cpu(pid):
-    """{thread name: user + system CPU seconds} of a process."""
-    result = {}
-    for tid in os.listdir("/proc/%d/task" % pid):
-        try:
-            with open("/proc/%d/task/%s/comm" % (pid, tid)) as f:
-                name = f.read().strip()
-            with open("/proc/%d/task/%s/stat" % (pid, tid)) as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        result[name] = result.get(name, 0.0) + (int(fields[11]) + int(fields[12])) / TICKS
-    return result
-
-
-def rss_kb(pid):
-    with open("/proc/%d/status" % pid) as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    return 0
 
 
 def main():
@@ -72,7 +49,7 @@ def main():
         deadline = started + drive_s / args.rate + 2.0
         while time.monotonic() < deadline:
             status = daemon.status() or {}
-            samples.append({"wall_s": time.monotonic() - started, "rss_kb": rss_kb(pid), "cpu": thread_cpu(pid),
+            samples.append({"wall_s": time.monotonic() - started, "rss_kb": memory_kb(pid)[0], "cpu": thread_cpu_s(pid),
                             "revolutions": int(status.get("revolutions", 0)), "state": status.get("state", "?"),
                             "lidar_dropped": int(status.get("lidar", {}).get("dropped", 0)),
                             "match_ms_p99": status.get("match_ms_p99", 0.0)})

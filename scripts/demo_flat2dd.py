@@ -19,28 +19,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.dont_write_bytecode = True  # nothing written into the source tree
 sys.path.insert(0, os.path.join(ROOT, "tests", "daemon"))
 from flat2dd_harness import RUNNING, Daemon, Tools, Truth, Watcher, configure, free_port, write_config  # noqa: E402
-
-CLOCK_TICKS = os.sysconf("SC_CLK_TCK")
-PAGE = os.sysconf("SC_PAGE_SIZE")
-
-
-def cpu_seconds(pid):
-    """User + system CPU time of a process, all its threads."""
-    with open("/proc/%d/stat" % pid) as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / CLOCK_TICKS
-
-
-def memory_kb(pid):
-    """(VmRSS, VmHWM) in KiB."""
-    values = {}
-    with open("/proc/%d/status" % pid) as f:
-        for line in f:
-            key, _, rest = line.partition(":")
-            if key in ("VmRSS", "VmHWM"):
-                values[key] = int(rest.split()[0])
-    return values.get("VmRSS", 0), values.get("VmHWM", 0)
-
+from proc_stats import memory_kb, process_cpu_s  # noqa: E402
 
 def write_tum(poses, path):
     """The subscriber's valid poses as a TUM trajectory (t x y z qx qy qz qw), one per time."""
@@ -84,7 +63,7 @@ def main():
         daemon.wait_ready()
         ready_s = time.monotonic() - daemon.started
         watcher = Watcher(sock)
-        cpu_before = cpu_seconds(daemon.process.pid)
+        cpu_before = process_cpu_s(daemon.process.pid)
         started = time.monotonic()
         replay = subprocess.run([os.path.join(b, "maps", "tools", "flat2d-inspect"), "replay", "--to",
                                  "127.0.0.1:%d" % port, "--speed", str(args.speed), os.path.join(drive, "lidar.pcap")],
@@ -92,7 +71,7 @@ def main():
         wall_s = time.monotonic() - started
         time.sleep(0.5)
         status = daemon.status()
-        cpu_s = cpu_seconds(daemon.process.pid) - cpu_before
+        cpu_s = process_cpu_s(daemon.process.pid) - cpu_before
         rss_kb, hwm_kb = memory_kb(daemon.process.pid)
         watcher.stop()
         code, stop_s = daemon.stop()

@@ -19,11 +19,11 @@ import unittest
 
 sys.dont_write_bytecode = True  # nothing written into the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from flat2dd_harness import (RUNNING, Daemon, Tools, Truth, Watcher, configure, errors, finish_drive,  # noqa: E402
-                             flood, free_port, kill_and_warm_start, percentile, run, write_config)
+from flat2dd_harness import (RUNNING, Daemon, Tools, Truth, Watcher, build_map, configure, errors,  # noqa: E402
+                             finish_drive, flood, free_port, kill_and_warm_start, kill_running, percentile, run,
+                             write_config)
 
 FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE, WORK = sys.argv[1:8]
-PACKAGING = os.path.join(SOURCE, "packaging", "config")
 configure(Tools(FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE))
 
 SPEED = 2            # the replay's rate; the daemon keeps up on one core (see docs/benchmarks.md)
@@ -59,20 +59,11 @@ class CampusEndToEnd(unittest.TestCase):
                 assert result.returncode == 0, result.stderr
         cls.map = os.path.join(WORK, "campus.f2m")
         if not os.path.exists(cls.map):
-            m = cls.mapping
-            result = run(MAP, "build", "--pcap", os.path.join(m, "lidar.pcap"), "--can", os.path.join(m, "can.log"),
-                         "--dbc", os.path.join(m, "vehicle.dbc"), "--odometry",
-                         os.path.join(PACKAGING, "odometry", "flat2d_sim.textproto"),
-                         "--anchor", os.path.join(m, "truth.tum"), "--out", cls.map, timeout=900)
-            assert result.returncode == 0, result.stderr
+            build_map(cls.mapping, cls.map, timeout=900)
         cls.truth = Truth(os.path.join(cls.drive, "truth.tum"))
 
     def tearDown(self):
-        for process in RUNNING:
-            if process.poll() is None:
-                process.kill()
-                process.wait()
-        RUNNING.clear()
+        kill_running()
 
     def wait_capture_time(self, replay_started, capture_s):
         """Sleeps until the replay reaches capture_s into the drive."""

@@ -21,12 +21,12 @@ import unittest
 
 sys.dont_write_bytecode = True  # nothing written into the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from flat2dd_harness import (RUNNING, Daemon, Tools, Truth, Watcher, accuracy, configure, finish_drive,  # noqa: E402
-                             flood, free_port, kill_and_warm_start, percentile, run, write_config)
+from flat2dd_harness import (RUNNING, Daemon, Tools, Truth, Watcher, accuracy, build_map, configure,  # noqa: E402
+                             finish_drive, flood, free_port, kill_and_warm_start, kill_running, percentile, run,
+                             write_config)
 
 FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE, WORK = sys.argv[1:8]
 QUICK = len(sys.argv) > 8 and sys.argv[8] == "quick"
-PACKAGING = os.path.join(SOURCE, "packaging", "config")
 configure(Tools(FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE))
 
 
@@ -44,21 +44,12 @@ class DaemonEndToEnd(unittest.TestCase):
                          *extra, "--out", out)
             assert result.returncode == 0, result.stderr
         cls.map = os.path.join(WORK, "occluders.f2m")
-        m = cls.mapping
-        result = run(MAP, "build", "--pcap", os.path.join(m, "lidar.pcap"), "--can", os.path.join(m, "can.log"),
-                     "--dbc", os.path.join(m, "vehicle.dbc"), "--odometry",
-                     os.path.join(PACKAGING, "odometry", "flat2d_sim.textproto"),
-                     "--anchor", os.path.join(m, "truth.tum"), "--out", cls.map)
-        assert result.returncode == 0, result.stderr
+        build_map(cls.mapping, cls.map)
         cls.truth = Truth(os.path.join(cls.drive, "truth.tum"))
         cls.start = (cls.truth.x[0], cls.truth.y[0], 0.0)
 
     def tearDown(self):
-        for process in RUNNING:
-            if process.poll() is None:
-                process.kill()
-                process.wait()
-        RUNNING.clear()
+        kill_running()
 
     def paths(self, name):
         sock = os.path.join(WORK, name + ".sock")

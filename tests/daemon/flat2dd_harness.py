@@ -158,6 +158,25 @@ def write_config(path, lidar, can, drive, map_path, sock, pose_file, initial=Non
         f.write("\n".join(lines) + "\n")
 
 
+def build_map(mapping, map_path, timeout=600):
+    """flat2d-map build of a simulated mapping drive's folder with its CAN odometry, anchored
+    at the truth's first pose, as the map engineer runs it."""
+    result = run(TOOLS.map, "build", "--pcap", os.path.join(mapping, "lidar.pcap"),
+                 "--can", os.path.join(mapping, "can.log"), "--dbc", os.path.join(mapping, "vehicle.dbc"),
+                 "--odometry", os.path.join(TOOLS.packaging, "odometry", "flat2d_sim.textproto"),
+                 "--anchor", os.path.join(mapping, "truth.tum"), "--out", map_path, timeout=timeout)
+    assert result.returncode == 0, result.stderr
+
+
+def kill_running():
+    """Kills every process a test started and still running (tearDown)."""
+    for process in RUNNING:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+    RUNNING.clear()
+
+
 def localized(poses):
     """The valid LOCALIZED poses of a Watcher's list."""
     return [p for _, p in poses if p.get("valid") and p.get("state") == "LOCALIZED"]
