@@ -99,19 +99,27 @@ Result<Localizer> Localizer::Create(maps::PriorMapReader map, const LocalizerOpt
   if (Status valid = ValidateOptions(options); !valid.ok()) return valid.error();
   auto window = MapWindow::Create(map, options.map_window);
   if (!window.ok()) return window.error();
+  std::optional<MapWindow> spare_window;
+  if (options.map_prefetch) {
+    auto spare = MapWindow::Create(map, options.map_window);
+    if (!spare.ok()) return spare.error();
+    spare_window.emplace(std::move(*spare));
+  }
   auto graph = graph::SlidingWindowGraph::Create(options.graph);
   if (!graph.ok()) return graph.error();
-  return Localizer(std::move(map), options, std::move(*window), std::move(*graph));
+  return Localizer(std::move(map), options, std::move(*window), std::move(spare_window), std::move(*graph));
 }
 
 Localizer::Localizer(maps::PriorMapReader map, const LocalizerOptions& options, MapWindow window,
-                     graph::SlidingWindowGraph graph)
+                     std::optional<MapWindow> spare_window, graph::SlidingWindowGraph graph)
     : options_(options),
-      map_(std::move(map)),
+      map_(std::make_unique<maps::PriorMapReader>(std::move(map))),
       window_(std::move(window)),
       matcher_(LimitsFor(options, window_), MatcherOptionsFor()),
       scan_(options.max_grid_points),
-      graph_(std::move(graph)) {}
+      graph_(std::move(graph)) {
+  if (spare_window) prefetch_ = std::make_unique<MapPrefetch>(std::move(*spare_window), matcher_.NewMap());
+}
 
 void Localizer::SetInitialPose(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen::Matrix3d& covariance) {
   has_initial_pose_ = true;
@@ -209,11 +217,17 @@ MatchResult Localizer::MatchScan(const Se2& prediction, TimeNs time_ns, const Po
   report.relocalizing = relocalizing_;
   // A global search wants the mosaic centred on its guess; tracking moves it every
   // recentre_m, or follows the nearest viewpoint.
-  const bool viewpoints = options_.match_viewpoints && !relocalizing_ && map_.viewpoint_count() > 0;
+  const bool viewpoints = options_.match_viewpoints && !relocalizing_ && map_->viewpoint_count() > 0;
   const double max_offset = relocalizing_ ? 1.0 : options_.map_window.recentre_m;
   const bool leaving_viewpoints = !viewpoints && window_.viewpoint() >= 0;
-  const Result<bool> moved = viewpoints ? window_.CoverWithViewpoint(map_, prediction.translation())
-                                        : window_.Cover(map_, prediction.translation(), leaving_viewpoints ? 0.0 : max_offset);
+  Result<bool> moved = false;
+  if (viewpoints) {
+    DropPrefetch();
+    moved = window_.CoverWithViewpoint(*map_, prediction.translation());
+    if (moved.ok() && *moved && !matcher_.SetMap(window_.grid()).ok()) ++stats_.map_errors;
+  } else {
+    moved = CoverMosaic(prediction.translation(), leaving_viewpoints ? 0.0 : max_offset);
+  }
   MatchResult result;
   if (!moved.ok()) {
     ++stats_.map_errors;
@@ -221,10 +235,7 @@ MatchResult Localizer::MatchScan(const Se2& prediction, TimeNs time_ns, const Po
     report.match = result.status;
     return result;
   }
-  if (*moved) {
-    ++stats_.map_window_moves;
-    if (!matcher_.SetMap(window_.grid()).ok()) ++stats_.map_errors;
-  }
+  if (*moved) ++stats_.map_window_moves;
   if (relocalizing_) {
     ++stats_.relocalizations;
     result = matcher_.Relocalize(scan_.points(), prediction, {relocalization_radius_m_, std::numbers::pi},
@@ -237,6 +248,42 @@ MatchResult Localizer::MatchScan(const Se2& prediction, TimeNs time_ns, const Po
   report.match_pose = result.map_T_vehicle;
   report.match_covariance = result.covariance;
   return result;
+}
+
+Result<bool> Localizer::CoverMosaic(const Eigen::Vector2d& position, double max_offset_m) {
+  const Eigen::Vector2d offset = position - window_.centre();
+  const double recentre_m = options_.map_window.recentre_m;
+  if (window_.filled() && window_.viewpoint() < 0 && offset.norm() < max_offset_m) {
+    // Halfway to the move, in tracking: prepare the window around where the vehicle will be
+    // when the move falls due, if it keeps its direction.
+    if (prefetch_ && prefetch_->idle() && !relocalizing_ && offset.norm() >= 0.5 * recentre_m) {
+      ++stats_.map_prefetches;
+      prefetch_->Start(*map_, window_.centre() + offset.normalized() * recentre_m);
+    }
+    return false;
+  }
+  if (prefetch_ && !prefetch_->idle()) {
+    const Status prepared = prefetch_->Finish();
+    stats_.map_prefetch_cpu_s += prefetch_->last_job_cpu_s();
+    // Near its centre, the prepared window holds all it must (map_window.hpp).
+    if (prepared.ok() && (position - prefetch_->centre()).norm() < 0.5 * recentre_m) {
+      prefetch_->Take(window_, matcher_);
+      ++stats_.map_prefetches_taken;
+      return true;
+    }
+    prefetch_->Discard();
+  }
+  const Result<bool> moved = window_.Cover(*map_, position, 0.0);
+  if (!moved.ok()) return moved.error();
+  if (!matcher_.SetMap(window_.grid()).ok()) ++stats_.map_errors;
+  return true;
+}
+
+void Localizer::DropPrefetch() {
+  if (!prefetch_ || prefetch_->idle()) return;
+  (void)prefetch_->Finish();  // its result is not used
+  stats_.map_prefetch_cpu_s += prefetch_->last_job_cpu_s();
+  prefetch_->Discard();
 }
 
 void Localizer::WidenRelocalization() {

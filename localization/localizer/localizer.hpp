@@ -6,6 +6,7 @@
 // Per revolution (AddGrid), with the grid's reference pose local_T_vehicle and time t:
 //  1. predict global_T_vehicle = L2G x local_T_vehicle, and move the map window there when
 //     the vehicle has left its centre, or to the nearest viewpoint sub-map (map_window.hpp);
+//     the next mosaic window is prepared on a worker thread ahead of time (map_prefetch.hpp);
 //  2. match the grid's slammable cells (vehicle frame, within point_range_m, decimated)
 //     against the window: tracking mode around the prediction, or, when lost, a global
 //     relocalization around it whose radius widens after every failure;
@@ -22,11 +23,14 @@
 // Between revolutions PoseAt composes the newest node with the odometry since its time, so
 // poses come at odometry rate with covariance from both.
 //
-// Fixed memory: the matcher, the map window, the scan buffer and the graph are sized in
-// Create; AddGrid, PoseAt and SetInitialPose do not allocate (a test counts).
+// Fixed memory: the matcher, the map windows, the scan buffer and the graph are sized in
+// Create; AddGrid, PoseAt and SetInitialPose do not allocate, nor does the prefetch worker
+// (a test counts).
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 
 #include <Eigen/Core>
 
@@ -34,6 +38,7 @@
 #include "hal/common/time.hpp"
 #include "localization/graph/sliding_window.hpp"
 #include "localization/localizer/localizer_state.hpp"
+#include "localization/localizer/map_prefetch.hpp"
 #include "localization/localizer/map_window.hpp"
 #include "localization/matching/correlative_matcher.hpp"
 #include "localization/odometry/pose_history.hpp"
@@ -45,6 +50,10 @@ namespace flat2d::localization {
 
 struct LocalizerOptions {
   MapWindowOptions map_window;
+  // Prepare the next mosaic window on a worker thread (map_prefetch.hpp); false: every move
+  // fills the window and rebuilds the score table on the tracking thread. A replay is
+  // repeatable either way; the prefetch costs a second window and score table in memory.
+  bool map_prefetch = true;
   // Track against the viewpoint sub-map nearest the prediction (thesis 7.3.2: structure
   // hidden from the mapping drive's pose cannot attract the match) instead of the mosaic.
   // Global relocalization always searches the mosaic. Without viewpoints in the map: the mosaic.
@@ -160,6 +169,9 @@ struct LocalizerStats {
   std::uint64_t relocalizations_refuted = 0;  // ... and then not confirmed by tracking
   std::uint64_t map_window_moves = 0;
   std::uint64_t map_errors = 0;        // damaged tiles met while moving the window
+  std::uint64_t map_prefetches = 0;        // windows prepared on the worker thread...
+  std::uint64_t map_prefetches_taken = 0;  // ... and taken when the move fell due
+  double map_prefetch_cpu_s = 0.0;         // the worker's CPU time for them, in all
 };
 
 class Localizer {
@@ -190,15 +202,20 @@ class Localizer {
   const Se2& global_T_local() const { return global_T_local_; }
   const LocalizerStats& stats() const { return stats_; }
   int graph_nodes() const { return graph_.size(); }
-  const maps::PriorMapReader& map() const { return map_; }
+  const maps::PriorMapReader& map() const { return *map_; }
 
  private:
   Localizer(maps::PriorMapReader map, const LocalizerOptions& options, MapWindow window,
-            graph::SlidingWindowGraph graph);
+            std::optional<MapWindow> spare_window, graph::SlidingWindowGraph graph);
 
   void StartFromInitialPose(TimeNs time_ns, const Se2& local_T_vehicle, const PoseHistory& odometry);
   void ExtractScan(const maps::ClassGrid& grid);
   MatchResult MatchScan(const Se2& prediction, TimeNs time_ns, const PoseHistory& odometry, RevolutionReport& report);
+  // Moves the window (and the matcher's map) to cover `position`: the prepared window when
+  // it fits, else a fill; then starts the next prefetch when it is time. Whether it moved.
+  Result<bool> CoverMosaic(const Eigen::Vector2d& position, double max_offset_m);
+  // Waits for a running prefetch and drops it: the map reader is the tracking thread's again.
+  void DropPrefetch();
   SearchWindow TrackingWindow(TimeNs time_ns, const PoseHistory& odometry) const;
   bool Accepts(const MatchResult& match) const;
   void WidenRelocalization();  // the next global search's radius, after a failed or refuted one
@@ -215,9 +232,11 @@ class Localizer {
   Eigen::Matrix3d OdometryInformation(const RelativeMotion& motion) const;
 
   LocalizerOptions options_;
-  maps::PriorMapReader map_;
+  // On the heap: the prefetch worker holds its address while the Localizer may move.
+  std::unique_ptr<maps::PriorMapReader> map_;
   MapWindow window_;
   CorrelativeMatcher matcher_;
+  std::unique_ptr<MapPrefetch> prefetch_;  // after map_ and the matcher: stopped before them
   ScanPoints scan_;
   graph::SlidingWindowGraph graph_;
   LocalizerStats stats_;

@@ -15,6 +15,7 @@ Result<LocalizerOptions> LocalizerOptionsFrom(const LocalizerConfig& c) {
   LocalizerOptions o;
   if (c.has_map_window_m()) o.map_window.side_m = c.map_window_m();
   if (c.has_map_recentre_m()) o.map_window.recentre_m = c.map_recentre_m();
+  if (c.has_map_prefetch()) o.map_prefetch = c.map_prefetch();
   if (c.has_map_cache_tiles()) {
     if (c.map_cache_tiles() < 1) return MakeError("map_cache_tiles must be >= 1");
     o.map_cache_tiles = c.map_cache_tiles();

@@ -47,19 +47,21 @@ std::string_view MatchStatusName(MatchStatus status) {
 CorrelativeMatcher::CorrelativeMatcher(const MatcherLimits& limits, const MatcherOptions& options)
     : limits_(limits),
       options_(options),
-      table_(limits.max_map_cells, options.table),
-      pyramid_(limits.max_map_cells, limits.max_levels),
+      map_(NewMap()),
       scans_(limits.max_headings, limits.max_points),
       branch_and_bound_(BranchAndBound::RootCount(limits.max_headings, limits.max_window_cells,
                                                   limits.max_levels)),
       coarse_scan_(limits.max_points) {}
 
-Status CorrelativeMatcher::SetMap(const MatchGrid& map) {
-  has_map_ = false;
-  if (Status status = table_.Rebuild(map); !status) return status;
-  if (Status status = pyramid_.Rebuild(table_); !status) return status;
-  has_map_ = true;
-  return Status::Ok();
+Status CorrelativeMatcher::SetMap(const MatchGrid& map) { return map_->Rebuild(map); }
+
+std::unique_ptr<MatchMap> CorrelativeMatcher::NewMap() const {
+  return std::make_unique<MatchMap>(limits_.max_map_cells, limits_.max_levels, options_.table);
+}
+
+std::unique_ptr<MatchMap> CorrelativeMatcher::ExchangeMap(std::unique_ptr<MatchMap> built) {
+  map_.swap(built);
+  return built;
 }
 
 MatchResult CorrelativeMatcher::Match(std::span<const Eigen::Vector2d> points,
@@ -92,35 +94,35 @@ MatchResult CorrelativeMatcher::MatchExhaustive(std::span<const Eigen::Vector2d>
 MatchStatus CorrelativeMatcher::CheckInput(std::span<const Eigen::Vector2d> points,
                                            const Se2& prediction,
                                            const SearchWindow& window) const {
-  if (!has_map_) return MatchStatus::kNoMap;
+  if (!has_map()) return MatchStatus::kNoMap;
   if (!prediction.Vector().allFinite() || !(window.linear >= 0.0) || !(window.angular >= 0.0) ||
       !std::isfinite(window.linear) || !std::isfinite(window.angular)) {
     return MatchStatus::kInvalidInput;
   }
   if (points.size() > limits_.max_points || !AllFinite(points)) return MatchStatus::kInvalidInput;
-  if (WindowCells(window, table_.geometry().resolution) > limits_.max_window_cells) {
+  if (WindowCells(window, map_->table().geometry().resolution) > limits_.max_window_cells) {
     return MatchStatus::kInvalidInput;
   }
   if (points.size() < std::max<std::size_t>(options_.min_points, 1)) {
     return MatchStatus::kTooFewPoints;
   }
-  const Eigen::Vector2i cell = table_.geometry().CellOf(prediction.translation());
-  if (!table_.geometry().Contains(cell.x(), cell.y())) return MatchStatus::kOutsideMap;
+  const Eigen::Vector2i cell = map_->table().geometry().CellOf(prediction.translation());
+  if (!map_->table().geometry().Contains(cell.x(), cell.y())) return MatchStatus::kOutsideMap;
   return MatchStatus::kOk;
 }
 
 SearchProblem CorrelativeMatcher::Prepare(std::span<const Eigen::Vector2d> points,
                                           const Se2& prediction, const SearchWindow& window,
                                           double step_range_cap, HeadingSet& headings) {
-  const double resolution = table_.geometry().resolution;
+  const double resolution = map_->table().geometry().resolution;
   const double step_range = std::min(MaxRange(points), step_range_cap);
   headings = ChooseHeadings(resolution, step_range, window.angular, options_.angular_step,
                             limits_.max_headings);
-  scans_.Prepare(points, prediction, headings, table_.geometry());
+  scans_.Prepare(points, prediction, headings, map_->table().geometry());
   SearchProblem problem;
   problem.scans = &scans_;
-  problem.table = &table_;
-  problem.pyramid = &pyramid_;
+  problem.table = &map_->table();
+  problem.pyramid = &map_->pyramid();
   problem.window_cells = WindowCells(window, resolution);
   problem.levels = LevelsFor(problem.window_cells, limits_.max_levels);
   problem.separation_cells = static_cast<int>(options_.ambiguity_separation_m / resolution);
@@ -147,11 +149,11 @@ MatchResult CorrelativeMatcher::Search(std::span<const Eigen::Vector2d> points,
   result.angular_step = headings.step;
   result.evaluated_candidates = outcome.evaluated;
 
-  const double resolution = table_.geometry().resolution;
+  const double resolution = map_->table().geometry().resolution;
   const Candidate& best = outcome.best;
   const Se2 grid_pose(prediction.x() + best.x * resolution, prediction.y() + best.y * resolution,
                       prediction.theta() + headings.Offset(best.heading));
-  result.map_T_vehicle = RefineContinuous(table_, points, grid_pose, options_.refine_iterations,
+  result.map_T_vehicle = RefineContinuous(map_->table(), points, grid_pose, options_.refine_iterations,
                                           resolution, std::max(headings.step, 1.0e-3));
   result.covariance =
       SurfaceCovariance(problem, best, resolution, headings.step, options_.surface);

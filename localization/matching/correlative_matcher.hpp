@@ -21,7 +21,10 @@
 
 #include "hal/common/error.hpp"
 #include "localization/matching/branch_and_bound.hpp"
+#include <memory>
+
 #include "localization/matching/match_grid.hpp"
+#include "localization/matching/match_map.hpp"
 #include "localization/matching/match_result.hpp"
 #include "localization/matching/scan_points.hpp"
 #include "localization/matching/rotated_scans.hpp"
@@ -79,7 +82,12 @@ class CorrelativeMatcher {
 
   // Rasterizes `map` into the score table and pyramid (in place, no allocation).
   Status SetMap(const MatchGrid& map);
-  bool has_map() const { return has_map_; }
+  bool has_map() const { return map_->built(); }
+  // A spare of the matcher's size, to build elsewhere and exchange (allocates: call it when
+  // the matcher is made, not while matching).
+  std::unique_ptr<MatchMap> NewMap() const;
+  // Matches against `built` from now on (it must come from NewMap); returns the previous map.
+  std::unique_ptr<MatchMap> ExchangeMap(std::unique_ptr<MatchMap> built);
 
   // Matches `points` (vehicle frame) around map_T_vehicle `prediction`.
   MatchResult Match(std::span<const Eigen::Vector2d> points, const Se2& prediction,
@@ -96,7 +104,7 @@ class CorrelativeMatcher {
   MatchResult MatchExhaustive(std::span<const Eigen::Vector2d> points, const Se2& prediction,
                               const SearchWindow& window);
 
-  const ScoreTable& table() const { return table_; }
+  const ScoreTable& table() const { return map_->table(); }
   const MatcherLimits& limits() const { return limits_; }
 
  private:
@@ -111,12 +119,10 @@ class CorrelativeMatcher {
 
   MatcherLimits limits_;
   MatcherOptions options_;
-  ScoreTable table_;
-  ScorePyramid pyramid_;
+  std::unique_ptr<MatchMap> map_;
   RotatedScans scans_;
   BranchAndBound branch_and_bound_;
   ScanPoints coarse_scan_;  // Relocalize's stage 1: limits.max_points
-  bool has_map_ = false;
 };
 
 }  // namespace flat2d::localization

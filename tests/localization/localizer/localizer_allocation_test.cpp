@@ -1,7 +1,7 @@
 // Fixed memory (issue 9 item 4): once the localizer exists and has warmed up, hundreds of
 // revolutions of tracking, map window moves, a blind spell that makes it DEGRADED and LOST,
-// global relocalization and poses at odometry rate must not touch the heap. Counts every
-// operator new in this test binary.
+// global relocalization and poses at odometry rate must not touch the heap, on the tracking
+// thread or the map prefetch worker. Counts every operator new in this test binary.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -52,6 +52,7 @@ TEST(LocalizerMemory, RevolutionsAfterWarmUpAllocateNothing) {
   EXPECT_GE(localizer->stats().relocalized, 1u);      // ... and relocalized from
   EXPECT_EQ(localizer->state(), LocalizerState::kLocalized);
   EXPECT_GT(localizer->stats().map_window_moves, 5u);
+  EXPECT_GT(localizer->stats().map_prefetches_taken, 2u);  // the worker thread's fills count too
   EXPECT_TRUE(std::isfinite(checksum));
 }
 

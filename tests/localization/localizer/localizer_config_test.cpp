@@ -25,6 +25,7 @@ TEST(LocalizerConfig, TheShippedFileHoldsTheDefaults) {
   EXPECT_EQ(shipped->map_window.recentre_m, defaults.map_window.recentre_m);
   EXPECT_EQ(shipped->map_cache_tiles, defaults.map_cache_tiles);
   EXPECT_EQ(shipped->match_viewpoints, defaults.match_viewpoints);
+  EXPECT_EQ(shipped->map_prefetch, defaults.map_prefetch);
   EXPECT_EQ(shipped->point_range_m, defaults.point_range_m);
   EXPECT_EQ(shipped->decimation_m, defaults.decimation_m);
   EXPECT_EQ(shipped->max_scan_points, defaults.max_scan_points);

@@ -2,6 +2,7 @@
 // through the reader's cache; moved only when the vehicle has gone recentre_m; empty off the
 // map; a damaged tile an error naming it.
 #include "localization/localizer/map_window.hpp"
+#include "localization/localizer/map_prefetch.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -110,6 +111,70 @@ TEST_F(MapWindowTest, ADamagedTileIsAnErrorNamingIt) {
   EXPECT_NE(moved.error().message.find("damaged.f2m"), std::string::npos) << moved.error().message;
   EXPECT_NE(moved.error().message.find("tile"), std::string::npos) << moved.error().message;
   EXPECT_FALSE(window->filled());
+}
+
+// The prefetch worker's window and score table are those a synchronous move would have made;
+// taking them hands the matcher the new map and keeps the old one as the next spare.
+TEST_F(MapWindowTest, APrefetchedWindowIsTheOneAMoveWouldFill) {
+  auto map = maps::PriorMapReader::Open(path_, 8);
+  ASSERT_TRUE(map.ok());
+  const MapWindowOptions options{.side_m = 20.0, .recentre_m = 4.0};
+  auto window = MapWindow::Create(*map, options);
+  auto spare = MapWindow::Create(*map, options);
+  auto reference = MapWindow::Create(*map, options);
+  ASSERT_TRUE(window.ok() && spare.ok() && reference.ok());
+  const MatcherLimits limits{.max_map_cells = window->grid().geometry().CellCount()};
+  CorrelativeMatcher matcher(limits, {});
+  CorrelativeMatcher reference_matcher(limits, {});
+  ASSERT_TRUE(*window->Cover(*map, {5.0, 55.0}));
+  ASSERT_TRUE(matcher.SetMap(window->grid()).ok());
+  const std::uint8_t* first_table = matcher.table().data();
+
+  MapPrefetch prefetch(std::move(*spare), matcher.NewMap());
+  EXPECT_TRUE(prefetch.idle());
+  const Eigen::Vector2d next(9.0, 55.0);
+  prefetch.Start(*map, next);
+  EXPECT_FALSE(prefetch.idle());
+  ASSERT_TRUE(prefetch.Finish().ok());
+  EXPECT_EQ(prefetch.centre(), next);
+  EXPECT_GT(prefetch.last_job_cpu_s(), 0.0);
+  prefetch.Take(*window, matcher);
+  EXPECT_TRUE(prefetch.idle());
+
+  ASSERT_TRUE(*reference->Cover(*map, next));
+  ASSERT_TRUE(reference_matcher.SetMap(reference->grid()).ok());
+  EXPECT_EQ(window->centre(), next);
+  const GridGeometry& g = window->grid().geometry();
+  ASSERT_EQ(g.origin, reference->grid().geometry().origin);
+  ASSERT_NE(matcher.table().data(), first_table);  // the spare's table, not a copy
+  for (int y = 0; y < g.height; ++y) {
+    for (int x = 0; x < g.width; ++x) {
+      ASSERT_EQ(window->grid().Occupied(x, y), reference->grid().Occupied(x, y)) << x << ", " << y;
+      ASSERT_EQ(matcher.table().At(x, y), reference_matcher.table().At(x, y)) << x << ", " << y;
+    }
+  }
+  // The next job fills the old window, now the spare, while the matcher keeps the new one.
+  prefetch.Start(*map, {13.0, 55.0});
+  ASSERT_TRUE(prefetch.Finish().ok());
+  prefetch.Discard();
+  EXPECT_EQ(window->centre(), next);
+}
+
+TEST_F(MapWindowTest, APrefetchOfADamagedTileReportsIt) {
+  std::vector<std::uint8_t> damaged = ReadBytes(path_);
+  damaged[damaged.size() - 100] ^= 0x5a;
+  auto map = maps::PriorMapReader::FromBytes(damaged, 8, "damaged.f2m");
+  ASSERT_TRUE(map.ok());
+  auto spare = MapWindow::Create(*map, {.side_m = 60.0, .recentre_m = 4.0});
+  ASSERT_TRUE(spare.ok());
+  CorrelativeMatcher matcher({.max_map_cells = spare->grid().geometry().CellCount()}, {});
+  MapPrefetch prefetch(std::move(*spare), matcher.NewMap());
+  prefetch.Start(*map, {10.0, 57.0});
+  const Status status = prefetch.Finish();
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.error().message.find("damaged.f2m"), std::string::npos) << status.error().message;
+  prefetch.Discard();
+  EXPECT_TRUE(prefetch.idle());
 }
 
 // Viewpoint mode: the nearest viewpoint's visible cells, switched only when another is
