@@ -265,6 +265,7 @@ Result<bool> Localizer::CoverMosaic(const Eigen::Vector2d& position, double max_
   if (prefetch_ && !prefetch_->idle()) {
     const Status prepared = prefetch_->Finish();
     stats_.map_prefetch_cpu_s += prefetch_->last_job_cpu_s();
+    if (prefetch_->last_finish_waited()) ++stats_.map_prefetch_waits;
     // Near its centre, the prepared window holds all it must (map_window.hpp).
     if (prepared.ok() && (position - prefetch_->centre()).norm() < 0.5 * recentre_m) {
       prefetch_->Take(window_, matcher_);

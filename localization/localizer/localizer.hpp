@@ -171,6 +171,7 @@ struct LocalizerStats {
   std::uint64_t map_errors = 0;        // damaged tiles met while moving the window
   std::uint64_t map_prefetches = 0;        // windows prepared on the worker thread...
   std::uint64_t map_prefetches_taken = 0;  // ... and taken when the move fell due
+  std::uint64_t map_prefetch_waits = 0;    // moves that waited for the worker to finish
   double map_prefetch_cpu_s = 0.0;         // the worker's CPU time for them, in all
 };
 

@@ -44,6 +44,7 @@ void MapPrefetch::Start(maps::PriorMapReader& map, const Eigen::Vector2d& centre
 
 Status MapPrefetch::Finish() {
   std::unique_lock lock(mutex_);
+  waited_ = running_;
   wake_.wait(lock, [this] { return !running_; });
   return job_status_;
 }

@@ -39,7 +39,10 @@ class MapPrefetch {
   // No job started since the last Take or Discard.
   bool idle() const { return !started_; }
   // Waits for the started job; its status (ok: the spare holds the window around centre()).
+  // The wait is at most the rest of a fill the caller would otherwise do itself.
   Status Finish();
+  // Whether the last Finish found the job still running (the worker fell behind).
+  bool last_finish_waited() const { return waited_; }
   const Eigen::Vector2d& centre() const { return centre_; }
   // After a successful Finish: exchanges the prepared window and map with the matched ones.
   void Take(MapWindow& window, CorrelativeMatcher& matcher);
@@ -55,6 +58,7 @@ class MapPrefetch {
   std::unique_ptr<MatchMap> map_;
   Eigen::Vector2d centre_ = Eigen::Vector2d::Zero();
   bool started_ = false;  // the tracking thread's view: a job was started, not yet taken
+  bool waited_ = false;
 
   std::mutex mutex_;
   std::condition_variable wake_;

@@ -44,6 +44,9 @@ writes the particles' mean pose per revolution (TUM, map frame).
   --initial-sigma M,RAD   the particles' initial spread (default 0.2,0.02)
   --particles N           particle count (default 1000)
   --resolution M          occupancy grid cell size, metres (default 0.10)
+  --rays N                rays of the 360-degree scan (default 5760)
+  --ray-decimation N      the likelihood field uses every Nth ray (default 2)
+  --hit-sigma M           the likelihood field's range sigma, metres (default 0.35)
   --seed N                random seed (default 1)
   --out est.tum           estimated global poses
   --json                  print a summary as one JSON object
@@ -89,6 +92,13 @@ Args ParseArgs(int argc, char** argv) {
       if (!(a.run.mcl.occupancy_resolution_m >= 0.02 && a.run.mcl.occupancy_resolution_m <= 2.0)) {
         Fail(1, "--resolution must be within [0.02, 2] m");
       }
+    } else if (arg == "--rays") {
+      a.run.scan.rays = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value().c_str(), 36, 36'000));
+    } else if (arg == "--ray-decimation") {
+      a.run.mcl.ray_decimation = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value().c_str(), 1, 1000));
+    } else if (arg == "--hit-sigma") {
+      a.run.mcl.hit_sigma_m = static_cast<float>(maps::cli::ParseNumber(kTool, arg, value().c_str()));
+      if (!(a.run.mcl.hit_sigma_m > 0.0f && a.run.mcl.hit_sigma_m <= 5.0f)) Fail(1, "--hit-sigma must be in (0, 5] m");
     } else if (arg == "--seed") {
       a.run.mcl.seed = static_cast<unsigned>(maps::cli::ParseInteger(kTool, arg, value().c_str(), 0, 4'294'967'295));
     } else if (arg == "--json") a.json = true;

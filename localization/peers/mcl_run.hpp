@@ -31,7 +31,7 @@ struct MclOptions {
   int particles = 1000;
   double occupancy_resolution_m = 0.10;
   // Likelihood field (MRPT's lmLikelihoodField_Thrun).
-  float hit_sigma_m = 0.20f;
+  float hit_sigma_m = 0.35f;  // MRPT's default; 0.2 lost the campus track more often
   float max_correspondence_m = 0.5f;
   int ray_decimation = 2;
   // Gaussian motion model: position sigma per metre driven, heading sigma per metre and per

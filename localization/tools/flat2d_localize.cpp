@@ -159,8 +159,10 @@ void PrintSummary(const localization::LocalizeRunResult& result) {
   std::printf(", \"map_window_moves\": %llu, \"map_errors\": %llu, \"grids_without_odometry\": %llu",
               static_cast<unsigned long long>(s.map_window_moves), static_cast<unsigned long long>(s.map_errors),
               static_cast<unsigned long long>(s.grids_without_odometry));
-  std::printf(", \"map_prefetches\": %llu, \"map_prefetches_taken\": %llu, \"map_prefetch_ms_mean\": %.3f",
+  std::printf(", \"map_prefetches\": %llu, \"map_prefetches_taken\": %llu, \"map_prefetch_waits\": %llu"
+              ", \"map_prefetch_ms_mean\": %.3f",
               static_cast<unsigned long long>(s.map_prefetches), static_cast<unsigned long long>(s.map_prefetches_taken),
+              static_cast<unsigned long long>(s.map_prefetch_waits),
               s.map_prefetches > 0 ? 1e3 * s.map_prefetch_cpu_s / static_cast<double>(s.map_prefetches) : 0.0);
   std::printf(", \"first_localized_after_s\": %s", localized_after ? std::to_string(*localized_after).c_str() : "null");
   std::printf(", \"states\": {");

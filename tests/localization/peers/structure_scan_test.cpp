@@ -37,7 +37,7 @@ TEST(StructureScan, NearestSlammableCellPerBearing) {
   // A hazard 3 m to the left is not structure: no return.
   grid.MarkLine({-1.0, 3.0}, {1.0, 3.0}, maps::CellClass::kHazard);
   mrpt::obs::CObservation2DRangeScan scan;
-  const int returns = StructureScan(grid, {}, scan);
+  const int returns = StructureScan(grid, {.rays = 720}, scan);
 
   ASSERT_EQ(scan.getScanSize(), 720u);
   EXPECT_FLOAT_EQ(scan.aperture, static_cast<float>(2.0 * std::numbers::pi));
@@ -55,7 +55,7 @@ TEST(StructureScan, IgnoresTheVehicleBodyAndBeyondMaxRange) {
   maps::ClassGrid grid = EmptyGrid();
   grid.Mark(Eigen::Vector2d(0.5, 0.0), maps::CellClass::kSlammable);   // inside min range
   grid.Mark(Eigen::Vector2d(0.0, -9.5), maps::CellClass::kSlammable);  // beyond 9 m
-  StructureScanOptions options;
+  StructureScanOptions options{.rays = 720};
   options.max_range_m = 9.0f;
   mrpt::obs::CObservation2DRangeScan scan;
   EXPECT_EQ(StructureScan(grid, options, scan), 0);
