@@ -30,6 +30,9 @@ Status ValidateGnss(const GnssOptions& gnss) {
   if (!(gnss.horizontal_sigma_m >= 0.0 && gnss.horizontal_sigma_m < 1000.0)) {
     return FieldError("gnss.horizontal_sigma_m", gnss.horizontal_sigma_m, "outside [0, 1000)");
   }
+  if (!(gnss.rtk_sigma_m >= 0.0 && gnss.rtk_sigma_m < 1000.0)) {
+    return FieldError("gnss.rtk_sigma_m", gnss.rtk_sigma_m, "outside [0, 1000)");
+  }
   if (!(gnss.sentence_latency_s >= 0.0 && gnss.sentence_latency_s < 1.0)) {
     return FieldError("gnss.sentence_latency_s", gnss.sentence_latency_s, "outside [0, 1)");
   }

@@ -33,6 +33,10 @@ struct GnssOptions {
   bool enabled = false;            // off: no receiver, position packets without a sentence
   GeoOrigin origin;
   double horizontal_sigma_m = 1.0; // per-axis Gaussian error of each fix (east, north)
+  // A survey (RTK) receiver, as mapping vehicles carry: fixes to rtk_sigma_m and written
+  // with seven decimals of minutes (1.85 mm), not the HDL-32E Garmin's four (18.5 cm).
+  bool rtk = false;
+  double rtk_sigma_m = 0.02;
   // The MRPT VLP-16 capture's packets run 0.34-0.73 s ahead of their fix: the sentence
   // arrives about 0.35 s after its PPS second.
   double sentence_latency_s = 0.35;

@@ -41,7 +41,8 @@ PositionPacketSimulator::PositionPacketSimulator(const Trajectory& trajectory,
       seed_(seed),
       period_ns_(std::llround(options.position_period_us * 1e3)),
       sentence_latency_ns_(std::llround(options.gnss.sentence_latency_s * 1e9)),
-      format_(options.model == velodyne::Model::kHdl32e ? GarminFormat() : velodyne::RmcFormat{}),
+      format_(options.model == velodyne::Model::kHdl32e && !options.gnss.rtk ? GarminFormat()
+                                                                            : velodyne::RmcFormat{}),
       pps_status_(options.gnss.enabled && options.model != velodyne::Model::kHdl32e
                       ? velodyne::PpsStatus::kLocked
                       : velodyne::PpsStatus::kAbsent) {}
@@ -62,7 +63,7 @@ velodyne::RmcFix PositionPacketSimulator::FixOfSecond(std::int64_t unix_second) 
   const TimeNs drive_ns = fix.utc_time_ns - options_.start_epoch_ns;
   const VehicleState state = trajectory_->At(static_cast<double>(drive_ns) * 1e-9);
   const auto key = static_cast<std::uint64_t>(unix_second);
-  const double sigma = options_.gnss.horizontal_sigma_m;
+  const double sigma = options_.gnss.rtk ? options_.gnss.rtk_sigma_m : options_.gnss.horizontal_sigma_m;
   const Eigen::Vector2d error(sigma * NormalFromBits(HashKey(seed_ ^ kGnssStream, key, 0)),
                               sigma * NormalFromBits(HashKey(seed_ ^ kGnssStream, key, 1)));
   const LatLon position =

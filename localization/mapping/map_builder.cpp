@@ -311,6 +311,14 @@ void MapBuilder::TransformEstimate(const Se2& world_T_map) {
   }
 }
 
+void MapBuilder::ScaleEstimate(double scale, const Eigen::Vector2d& centre) {
+  for (std::size_t k = 0; k < keyframes_.size(); ++k) {
+    const Se2& e = keyframes_[k].estimate;
+    keyframes_[k].estimate = Se2(centre + scale * (e.translation() - centre), e.theta());
+    graph_.nodes[k].estimate = keyframes_[k].estimate;
+  }
+}
+
 Se2 MapBuilder::CorrectedPose(double time_s, const Se2& odometry) const {
   if (keyframes_.empty()) return odometry;
   auto correction = [](const Keyframe& k) { return k.estimate * k.odometry.Inverse(); };

@@ -150,6 +150,9 @@ class MapBuilder {
   // Moves the whole estimate by world_T_map, e.g. the rigid motion that best fits the
   // keyframes to a georeferenced track (GNSS).
   void TransformEstimate(const Se2& world_T_map);
+  // Scales the optimized keyframe positions about `centre` (headings unchanged): a scale
+  // fixed from outside, e.g. by a GNSS track over the drive.
+  void ScaleEstimate(double scale, const Eigen::Vector2d& centre);
 
   // world_T_vehicle for a vehicle at odometry pose `odometry` at `time_s`: the odometry
   // corrected by the keyframes' estimates around that time (interpolated between them).

@@ -35,6 +35,10 @@ struct DriveBuildOptions {
   // keyframe starts at its pose, and the optimized map is moved by the rigid motion that
   // best fits the keyframes to it. Empty: the odometry frame is the map frame.
   std::vector<evaluation::TimedPose> anchor;
+  // A track of positions (GNSS fixes) whose scale the optimized map takes: the least-squares
+  // similarity of the keyframes onto it, its scale applied about the keyframes' centroid,
+  // before the anchor's rigid fit. Empty: the builder's own scale (odometry and matches).
+  std::vector<evaluation::TimedPose> scale_track;
 };
 
 struct DriveBuildResult {
@@ -44,6 +48,9 @@ struct DriveBuildResult {
   mapping::MapBuilderStats stats;
   std::optional<maps::ClassGrid> mosaic;  // none when no revolution fell within the CAN log
   std::uint64_t revolutions = 0;
+  // The scale applied from scale_track (1 without one), and the fixes it was fitted on.
+  double track_scale = 1.0;
+  int track_scale_fixes = 0;
 };
 
 // An error when a file cannot be read or is invalid; no keyframes and no mosaic when no

@@ -16,6 +16,7 @@
 #include "localization/evaluation/trajectory_file.hpp"
 #include "localization/mapping/carmen_map_build.hpp"
 #include "localization/tools/drive_map_build.hpp"
+#include "localization/tools/gnss_track.hpp"
 #include "localization/tools/shipped_config.hpp"
 #include "maps/grid/class_grid_file.hpp"
 #include "maps/grid/grid_crop.hpp"
@@ -54,6 +55,12 @@ at its optimized pose written as a prior map with viewpoint sub-maps.
   --anchor FILE.tum     drive: a track in the map frame (GNSS, the simulator's truth.tum):
                         the first keyframe starts at its pose, the optimized map is fitted
                         to it rigidly; default: the odometry frame
+  --scale-from FILE.tum drive: a GNSS track (positions; 1 Hz is enough) whose scale the
+                        map takes: the similarity that best fits the keyframes to it, its
+                        scale applied before the --anchor fit (the builder's own scale,
+                        from odometry and matches, is 0.1-0.2 % short on long drives)
+  --scale-from-gnss     drive: the same, from the GNSS fixes ($GPRMC) in the capture's
+                        position packets
   --out MAP             the prior map file
   --png FILE            preview: the map, the optimized trajectory (blue), viewpoints (green)
   --trajectory FILE     the optimized trajectory (TUM): every scan, or every CAN sample
@@ -100,10 +107,11 @@ flat2d-eval grid compares with a truth map. --region clips to a box in the map f
 constexpr localization::mapping::OdometryNoiseModel kDriveOdometrySigma{0.01, 0.01, 0.01, 0.001, 0.0, 0};
 
 struct BuildArgs {
-  std::optional<std::string> carmen, pcap, can, dbc, odometry, config, anchor;
+  std::optional<std::string> carmen, pcap, can, dbc, odometry, config, anchor, scale_from;
   std::string out;
   std::optional<std::string> png, trajectory, odometry_out, reference_out;
   bool json = false;
+  bool scale_from_gnss = false;
   localization::mapping::MapBuilderOptions builder;
   localization::mapping::OdometryNoiseModel noise;
   std::optional<localization::mapping::OdometryNoiseModel> odometry_sigma;
@@ -153,6 +161,8 @@ BuildArgs ParseBuild(int argc, char** argv) {
     else if (arg == "--odometry") a.odometry = value();
     else if (arg == "--config") a.config = value();
     else if (arg == "--anchor") a.anchor = value();
+    else if (arg == "--scale-from") a.scale_from = value();
+    else if (arg == "--scale-from-gnss") a.scale_from_gnss = true;
     else if (arg == "--out") a.out = value();
     else if (arg == "--png") a.png = value();
     else if (arg == "--trajectory") a.trajectory = value();
@@ -204,6 +214,10 @@ BuildArgs ParseBuild(int argc, char** argv) {
   if (a.out.empty()) Fail(1, "build needs --out MAP");
   if (a.carmen.has_value() == a.pcap.has_value()) Fail(1, "build needs exactly one of --carmen and --pcap");
   if (a.pcap && (!a.can || !a.dbc || !a.odometry)) Fail(1, "build --pcap needs --can, --dbc and --odometry");
+  if (a.carmen && (a.anchor || a.scale_from || a.scale_from_gnss)) {
+    Fail(1, "--anchor, --scale-from and --scale-from-gnss are for drives (--pcap)");
+  }
+  if (a.scale_from && a.scale_from_gnss) Fail(1, "give one of --scale-from and --scale-from-gnss");
   if (!(a.resolution_m > 0.0) || !(a.viewpoint_range_m > 0.0) || a.viewpoint_spacing_m < 0.0 ||
       !(a.builder.keyframe_distance_m >= 0.0)) {
     Fail(1, "--resolution and --viewpoint-range must be positive, --viewpoint-spacing and --keyframe-distance >= 0");
@@ -219,6 +233,8 @@ struct BuiltMap {
   std::vector<TimedPose> estimate, odometry, reference;
   std::vector<localization::mapping::Keyframe> keyframes;
   localization::mapping::MapBuilderStats stats;
+  double track_scale = 1.0;  // --scale-from's
+  int track_scale_fixes = 0;
   std::string source;
 };
 
@@ -261,6 +277,17 @@ BuiltMap BuildDrive(const BuildArgs& a) {
     if (!anchor.ok()) Fail(2, anchor.error().message);
     options.anchor = std::move(*anchor);
   }
+  if (a.scale_from) {
+    auto track = localization::evaluation::ReadTrajectory(*a.scale_from);
+    if (!track.ok()) Fail(2, track.error().message);
+    options.scale_track = std::move(*track);
+  }
+  if (a.scale_from_gnss) {
+    auto track = localization::ReadGnssTrack(*a.pcap);
+    if (!track.ok()) Fail(2, track.error().message);
+    if (track->size() < 3) Fail(2, *a.pcap + ": fewer than 3 valid GNSS fixes in its position packets");
+    options.scale_track = std::move(*track);
+  }
   auto built = localization::BuildFromDrive(options);
   if (!built.ok()) Fail(2, built.error().message);
   if (!built->mosaic) Fail(3, *a.pcap + ": no complete revolution within the CAN log's time: nothing to map");
@@ -270,6 +297,8 @@ BuiltMap BuildDrive(const BuildArgs& a) {
   out.odometry = std::move(built->odometry);
   out.keyframes = std::move(built->keyframes);
   out.stats = built->stats;
+  out.track_scale = built->track_scale;
+  out.track_scale_fixes = built->track_scale_fixes;
   out.source = "drive " + *a.pcap + " + " + *a.can;
   return out;
 }
@@ -332,14 +361,14 @@ int Build(int argc, char** argv) {
     std::printf("{\"map\":%s,\"scans\":%llu,\"keyframes\":%llu,\"tracking_accepted\":%llu,\"tracking_rejected\":%llu,"
                 "\"loop_candidates\":%llu,\"loop_closures\":%llu,\"loop_closures_switched_off\":%llu,"
                 "\"loop_closures_gated\":%llu,\"loop_closures_drift\":%llu,\"optimizations\":%llu,\"optimize_seconds\":%.3f,\"match_seconds\":%.3f,\"viewpoints\":%zu,"
-                "\"odometry_scale\":%.6f}\n",
+                "\"odometry_scale\":%.6f,\"track_scale\":%.6f,\"track_scale_fixes\":%d}\n",
                 maps::SummaryJson(summary).c_str(), static_cast<unsigned long long>(st.scans),
                 static_cast<unsigned long long>(st.keyframes), static_cast<unsigned long long>(st.tracking_accepted),
                 static_cast<unsigned long long>(st.tracking_rejected), static_cast<unsigned long long>(st.loop_candidates),
                 static_cast<unsigned long long>(st.loop_accepted), static_cast<unsigned long long>(st.loop_switched_off),
                 static_cast<unsigned long long>(st.loop_gated), static_cast<unsigned long long>(st.loop_drift_closed),
                 static_cast<unsigned long long>(st.optimizations), st.optimize_seconds, st.match_seconds,
-                viewpoints.size(), st.odometry_scale);
+                viewpoints.size(), st.odometry_scale, map.track_scale, map.track_scale_fixes);
   } else {
     std::printf("%s: %llu scans, %llu keyframes; tracking %llu accepted, %llu rejected; loop closures %llu of %llu "
                 "candidates (%llu switched off by the robust mixture); odometry scale %.4f; %zu viewpoints\n",

@@ -46,6 +46,8 @@ constexpr const char* kUsage = R"(usage:
   --rotation-hz HZ      LiDAR rotation rate, 5-20 (default 10)
   --odometry-noise P    mems | fog | none (default mems)
   --gnss                put noisy GNSS fixes ($GPRMC) into the position packets
+  --gnss-rtk            ... from a survey (RTK) receiver: 2 cm per axis, not 1 m, and seven
+                        decimals of minutes (implies --gnss)
   --truth-rate HZ       truth.tum rate, >= 100 (default 200)
   --map-resolution M    truth map cell size in metres (default 0.05; campus: 10080 x 6880 cells)
   --start UNIX_SECONDS  time of the drive's start (default 1767225600: 2026-01-01T00:00:00Z)
@@ -123,6 +125,7 @@ CliOptions ParseArguments(int argc, char** argv) {
   std::optional<velodyne::Model> sensor;
   std::optional<double> rotation_hz;
   bool gnss = false;
+  bool gnss_rtk = false;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
     auto value = [&]() -> std::string {
@@ -164,6 +167,8 @@ CliOptions ParseArguments(int argc, char** argv) {
       sim.odometry_noise = *preset;
     } else if (arg == "--gnss") {
       gnss = true;
+    } else if (arg == "--gnss-rtk") {
+      gnss = gnss_rtk = true;
     } else if (arg == "--truth-rate") {
       sim.truth_rate_hz = ParseNumber(arg, value());
     } else if (arg == "--map-resolution") {
@@ -186,6 +191,7 @@ CliOptions ParseArguments(int argc, char** argv) {
   sim.lidar = DefaultLidarOptions(sensor.value_or(velodyne::Model::kHdl32e));
   if (rotation_hz) sim.lidar.rotation_hz = *rotation_hz;
   sim.lidar.gnss.enabled = gnss;
+  sim.lidar.gnss.rtk = gnss_rtk;
   if (Status valid = ValidateLidarOptions(sim.lidar); !valid) Fail(kUsageError, valid.error().message);
   if (options.udp) sim.data_port = options.udp->port;
   if (!options.list && !options.out && !options.udp) {

@@ -78,6 +78,33 @@ TEST_F(LidarSimulatorTest, GnssFixesHaveTheConfiguredNoise) {
   }
 }
 
+// A survey receiver on the HDL-32E: centimetre fixes, written with seven decimals of minutes
+// (the Garmin's four would round them to 18 cm).
+TEST_F(LidarSimulatorTest, RtkFixesAreCentimetresAndWrittenToSevenDecimals) {
+  LidarOptions options = Options(Model::kHdl32e);
+  options.gnss.enabled = true;
+  options.gnss.rtk = true;
+  LidarSimulator sim = Make(options);
+  double worst_m = 0.0;
+  int fixes = 0;
+  for (int i = 0; i < static_cast<int>(3e6 / options.position_period_us); ++i) {
+    const SimulatedPacket& simulated = sim.NextPositionPacket();
+    const velodyne::PositionPacket packet = DecodeOrFail(simulated.payload);
+    ASSERT_TRUE(packet.rmc.has_value() && packet.rmc->has_position);
+    const std::string sentence(packet.nmea_sentence());
+    const std::size_t latitude = sentence.find(',', sentence.find(',', sentence.find(',') + 1) + 1) + 1;
+    EXPECT_EQ(sentence.find(',', latitude) - sentence.find('.', latitude), 8u) << sentence;  // ".mmmmmmm"
+    const velodyne::RmcFix& fix = *packet.rmc;
+    const VehicleState truth = trajectory_->At(sim.DriveTimeS(fix.utc_time_ns));
+    const Eigen::Vector2d local = GeodeticToLocal(options.gnss.origin, {fix.latitude_deg, fix.longitude_deg});
+    worst_m = std::max(worst_m, (local - truth.world_T_vehicle.translation().head<2>()).cwiseAbs().maxCoeff());
+    ++fixes;
+  }
+  EXPECT_GT(fixes, 100);
+  EXPECT_GT(worst_m, 0.0);  // noisy...
+  EXPECT_LT(worst_m, 4.0 * options.gnss.rtk_sigma_m + 1e-3);  // ... at 2 cm
+}
+
 TEST_F(LidarSimulatorTest, WithoutGnssPacketsCarryTheDeviceTimeAndNoSentence) {
   LidarOptions options = Options(Model::kVlp16);
   LidarSimulator sim = Make(options);

@@ -32,12 +32,14 @@ def run(tool, *args):
 class DriveMap(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        # The occluders world's mapping drive: round a row of boxes in a walled room, 101 m.
+        # The occluders world's mapping drive: round a row of boxes in a walled room, 101 m,
+        # with a survey GNSS receiver's fixes in the position packets (the LiDAR data is the
+        # same with or without them).
         os.makedirs(WORK, exist_ok=True)
         cls.drive = os.path.join(WORK, "occluders")
         duration = ["--duration", "25"] if QUICK else []
         result = run(SIM, "--world", "occluders", "--drive", "0", "--seed", "5", "--sensor", "vlp16",
-                     *duration, "--out", cls.drive)
+                     "--gnss-rtk", *duration, "--out", cls.drive)
         assert result.returncode == 0, result.stderr
         cls.map = os.path.join(WORK, "occluders.f2m")
         d = cls.drive
@@ -95,6 +97,38 @@ class DriveMap(unittest.TestCase):
         self.assertLessEqual(aligned["ate_rmse_m"], ate["ate_rmse_m"] + 1e-9)  # the best fit is no worse
         if not QUICK:
             self.assertLess(ate["ate_rmse_m"], ATE_RMSE_M, ate)
+
+    def test_scale_from_the_gnss_in_the_position_packets(self):
+        d = self.drive
+        common = ["build", "--pcap", os.path.join(d, "lidar.pcap"), "--can", os.path.join(d, "can.log"),
+                  "--dbc", os.path.join(d, "vehicle.dbc"), "--odometry", SIM_ODOMETRY,
+                  "--anchor", os.path.join(d, "truth.tum")]
+        scaled = os.path.join(WORK, "occluders_scaled")
+        result = run(MAP, *common, "--scale-from-gnss", "--out", scaled + ".f2m", "--trajectory", scaled + ".tum",
+                     "--json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        summary = json.loads(result.stdout)
+        self.assertGreaterEqual(summary["track_scale_fixes"], 20 if QUICK else 60)  # one fix a second
+        # The builder's own scale times the GNSS correction is the wheels' true scale.
+        self.assertAlmostEqual(summary["track_scale"], 1.0, delta=0.01)
+        ate = json.loads(run(EVAL, "traj", "--truth", os.path.join(d, "truth.tum"), "--est", scaled + ".tum",
+                             "--json").stdout)
+        if not QUICK:
+            self.assertLess(ate["ate_rmse_m"], ATE_RMSE_M, ate)
+        # Exclusive, for drives only, and a capture must hold fixes.
+        self.assertEqual(run(MAP, *common, "--scale-from-gnss", "--scale-from", os.path.join(d, "truth.tum"),
+                             "--out", scaled + "_x.f2m").returncode, 1)
+        result = run(MAP, "build", "--carmen", "a.log", "--scale-from-gnss", "--out", scaled + "_x.f2m")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("--scale-from-gnss", result.stderr)
+        silent = os.path.join(WORK, "occluders_no_gnss")
+        self.assertEqual(run(SIM, "--world", "occluders", "--drive", "0", "--seed", "5", "--sensor", "vlp16",
+                             "--duration", "5", "--out", silent).returncode, 0)
+        result = run(MAP, "build", "--pcap", os.path.join(silent, "lidar.pcap"), "--can", os.path.join(silent, "can.log"),
+                     "--dbc", os.path.join(silent, "vehicle.dbc"), "--odometry", SIM_ODOMETRY, "--scale-from-gnss",
+                     "--out", scaled + "_x.f2m")
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("GNSS fixes", result.stderr)
 
     def test_info_and_renders(self):
         self.assertEqual(self.build.returncode, 0, self.build.stderr)
