@@ -52,14 +52,15 @@ class CampusEndToEnd(unittest.TestCase):
         os.makedirs(WORK, exist_ok=True)
         cls.mapping = os.path.join(WORK, "campus_mapping")
         cls.drive = os.path.join(WORK, "campus_drive1")
-        for out, drive, seed, extra in ((cls.mapping, "0", "1", []), (cls.drive, "1", "2", ["--gnss"])):
+        # The mapping vehicle carries a survey GNSS receiver, which sets the map's scale.
+        for out, drive, seed, extra in ((cls.mapping, "0", "1", ["--gnss-rtk"]), (cls.drive, "1", "2", ["--gnss"])):
             if not os.path.exists(os.path.join(out, "truth.tum")):
                 result = run(SIM, "--world", "campus", "--drive", drive, "--seed", seed, "--sensor", "hdl32e",
                              *extra, "--out", out)
                 assert result.returncode == 0, result.stderr
         cls.map = os.path.join(WORK, "campus.f2m")
         if not os.path.exists(cls.map):
-            build_map(cls.mapping, cls.map, timeout=900)
+            build_map(cls.mapping, cls.map, timeout=900, scale_from_gnss=True)
         cls.truth = Truth(os.path.join(cls.drive, "truth.tum"))
 
     def tearDown(self):

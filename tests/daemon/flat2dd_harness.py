@@ -158,13 +158,15 @@ def write_config(path, lidar, can, drive, map_path, sock, pose_file, initial=Non
         f.write("\n".join(lines) + "\n")
 
 
-def build_map(mapping, map_path, timeout=600):
-    """flat2d-map build of a simulated mapping drive's folder with its CAN odometry, anchored
-    at the truth's first pose, as the map engineer runs it."""
+def build_map(mapping, map_path, timeout=600, scale_from_gnss=False):
+    """flat2d-map build of a simulated mapping drive's folder with its CAN odometry, fitted to
+    the truth track, as the map engineer runs it; with scale_from_gnss the map's scale comes
+    from the GNSS fixes in the drive's position packets (a drive simulated with --gnss-rtk)."""
+    gnss = ["--scale-from-gnss"] if scale_from_gnss else []
     result = run(TOOLS.map, "build", "--pcap", os.path.join(mapping, "lidar.pcap"),
                  "--can", os.path.join(mapping, "can.log"), "--dbc", os.path.join(mapping, "vehicle.dbc"),
                  "--odometry", os.path.join(TOOLS.packaging, "odometry", "flat2d_sim.textproto"),
-                 "--anchor", os.path.join(mapping, "truth.tum"), "--out", map_path, timeout=timeout)
+                 "--anchor", os.path.join(mapping, "truth.tum"), *gnss, "--out", map_path, timeout=timeout)
     assert result.returncode == 0, result.stderr
 
 
