@@ -33,12 +33,13 @@ FLOOD_AT_S = 30      # capture seconds: malformed datagrams and requests
 KILL_AT_S = 90       # capture seconds: kill -9, then a warm start
 
 # Accuracy on the campus (the localizer's targets, DESIGN.md): heading within 0.02 rad for
-# 99 % of LOCALIZED poses. Position: the campus map itself is 0.30 m ATE from the truth
-# (docs/benchmarks.md, prior maps), and the localizer offline gives p95 0.43 m on this drive
-# against it (L2G localizer section); the daemon must not add to that: p95 <= 0.55 m.
+# 99 % of LOCALIZED poses. Position: with its scale from the survey GNSS the campus map is
+# 0.04 m ATE from the truth (docs/benchmarks.md, prior maps); through the daemon this drive
+# measured p95 0.104 m (2026-12-04). The margin is for the replay's timing on a loaded
+# machine: p95 <= 0.20 m, the lateral target.
 HEADING_RAD = 0.02
 HEADING_SHARE = 0.99
-POSITION_P95_M = 0.55
+POSITION_P95_M = 0.20
 
 
 def sigma_m(pose):
