@@ -33,6 +33,7 @@ Result<DeadReckoningOptions> DeadReckoningOptionsFrom(const DeadReckoningConfig&
   if (config.has_yaw_rate_bias_radps()) options.yaw_rate_bias_radps = config.yaw_rate_bias_radps();
   options.estimate_yaw_rate_bias = config.estimate_yaw_rate_bias();
   if (config.has_max_gap_s()) options.max_gap_ns = static_cast<TimeNs>(config.max_gap_s() * 1e9);
+  if (config.has_wheel_speed_scale()) options.wheel_speed_scale = config.wheel_speed_scale();
   if (Status valid = ValidateOptions(options); !valid.ok()) {
     return MakeError("dead_reckoning: " + valid.error().message);
   }

@@ -5,6 +5,7 @@
 // be written, 3 nothing to map (no keyframe).
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
@@ -12,9 +13,12 @@
 #include <string_view>
 #include <vector>
 
+#include <google/protobuf/text_format.h>
+
 #include "hal/carmen/carmen_log.hpp"
 #include "localization/evaluation/trajectory_file.hpp"
 #include "localization/mapping/carmen_map_build.hpp"
+#include "localization/odometry/odometry_config.hpp"
 #include "localization/tools/drive_map_build.hpp"
 #include "localization/tools/gnss_track.hpp"
 #include "localization/tools/shipped_config.hpp"
@@ -65,6 +69,10 @@ at its optimized pose written as a prior map with viewpoint sub-maps.
   --png FILE            preview: the map, the optimized trajectory (blue), viewpoints (green)
   --trajectory FILE     the optimized trajectory (TUM): every scan, or every CAN sample
   --odometry-out FILE   the odometry the builder was given (TUM)
+  --calibrated-odometry-out FILE
+                        drive: the --odometry configuration with the wheel scale the build
+                        measured (wheel_speed_scale x odometry_scale x track_scale), for
+                        flat2d-localize and flat2dd on the same vehicle
   --reference-out FILE  carmen: the log's own poses (TUM)
   --json                a build summary as one JSON object on stdout
   --seed N              carmen: noise seed (default 1)
@@ -109,7 +117,7 @@ constexpr localization::mapping::OdometryNoiseModel kDriveOdometrySigma{0.01, 0.
 struct BuildArgs {
   std::optional<std::string> carmen, pcap, can, dbc, odometry, config, anchor, scale_from;
   std::string out;
-  std::optional<std::string> png, trajectory, odometry_out, reference_out;
+  std::optional<std::string> png, trajectory, odometry_out, reference_out, calibrated_odometry_out;
   bool json = false;
   bool scale_from_gnss = false;
   localization::mapping::MapBuilderOptions builder;
@@ -167,6 +175,7 @@ BuildArgs ParseBuild(int argc, char** argv) {
     else if (arg == "--png") a.png = value();
     else if (arg == "--trajectory") a.trajectory = value();
     else if (arg == "--odometry-out") a.odometry_out = value();
+    else if (arg == "--calibrated-odometry-out") a.calibrated_odometry_out = value();
     else if (arg == "--reference-out") a.reference_out = value();
     else if (arg == "--json") a.json = true;
     else if (arg == "--seed") a.noise.seed = static_cast<std::uint64_t>(maps::cli::ParseInteger(kTool, arg, value(), 0, INT64_MAX));
@@ -218,6 +227,7 @@ BuildArgs ParseBuild(int argc, char** argv) {
     Fail(1, "--anchor, --scale-from and --scale-from-gnss are for drives (--pcap)");
   }
   if (a.scale_from && a.scale_from_gnss) Fail(1, "give one of --scale-from and --scale-from-gnss");
+  if (a.carmen && a.calibrated_odometry_out) Fail(1, "--calibrated-odometry-out is for drives (--pcap)");
   if (!(a.resolution_m > 0.0) || !(a.viewpoint_range_m > 0.0) || a.viewpoint_spacing_m < 0.0 ||
       !(a.builder.keyframe_distance_m >= 0.0)) {
     Fail(1, "--resolution and --viewpoint-range must be positive, --viewpoint-spacing and --keyframe-distance >= 0");
@@ -303,6 +313,29 @@ BuiltMap BuildDrive(const BuildArgs& a) {
   return out;
 }
 
+// The drive's odometry configuration with the wheel scale this build measured: the scale
+// the builder's odometry factors ended at, times the GNSS track's correction, times the
+// scale the configuration already had (the builder measured relative to it).
+void WriteCalibratedOdometry(const std::string& odometry_path, const BuiltMap& map, const std::string& path) {
+  auto config = localization::LoadOdometryConfig(odometry_path);
+  if (!config.ok()) Fail(2, config.error().message);
+  localization::DeadReckoningConfig& dr = *config->mutable_dead_reckoning();
+  const double given = dr.has_wheel_speed_scale() ? dr.wheel_speed_scale() : 1.0;
+  const double measured = given * map.stats.odometry_scale * map.track_scale;
+  dr.set_wheel_speed_scale(measured);
+  std::string text;
+  if (!google::protobuf::TextFormat::PrintToString(*config, &text)) Fail(2, "cannot format " + path);
+  char scales[160];
+  std::snprintf(scales, sizeof scales, "%.6f (odometry %.6f x track %.6f x given %.6f)", measured,
+                map.stats.odometry_scale, map.track_scale, given);
+  std::ofstream out(path);
+  out << "# " << odometry_path << " with the wheel scale measured by flat2d-map build: " << scales << "\n"
+      << "# proto-file: localization/odometry/odometry_config.proto\n"
+      << "# proto-message: flat2d.localization.OdometryConfig\n"
+      << text;
+  if (!out.flush()) Fail(2, "cannot write " + path);
+}
+
 // A viewpoint sub-map every `spacing` metres along the keyframes' path.
 std::vector<maps::ViewpointGrid> MakeViewpoints(const BuiltMap& map, double spacing, double range) {
   std::vector<maps::ViewpointGrid> viewpoints;
@@ -351,6 +384,7 @@ int Build(int argc, char** argv) {
   if (a.png) WritePreview(map, viewpoints, *a.png);
   WriteTrajectoryOrFail(map.estimate, a.trajectory);
   WriteTrajectoryOrFail(map.odometry, a.odometry_out);
+  if (a.calibrated_odometry_out) WriteCalibratedOdometry(*a.odometry, map, *a.calibrated_odometry_out);
   WriteTrajectoryOrFail(map.reference, a.reference_out);
 
   auto reader = maps::PriorMapReader::Open(a.out, 1);

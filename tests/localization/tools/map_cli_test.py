@@ -104,13 +104,24 @@ class DriveMap(unittest.TestCase):
                   "--dbc", os.path.join(d, "vehicle.dbc"), "--odometry", SIM_ODOMETRY,
                   "--anchor", os.path.join(d, "truth.tum")]
         scaled = os.path.join(WORK, "occluders_scaled")
+        calibrated = scaled + ".odometry.textproto"
         result = run(MAP, *common, "--scale-from-gnss", "--out", scaled + ".f2m", "--trajectory", scaled + ".tum",
-                     "--json")
+                     "--calibrated-odometry-out", calibrated, "--json")
         self.assertEqual(result.returncode, 0, result.stderr)
         summary = json.loads(result.stdout)
         self.assertGreaterEqual(summary["track_scale_fixes"], 20 if QUICK else 60)  # one fix a second
-        # The builder's own scale times the GNSS correction is the wheels' true scale.
         self.assertAlmostEqual(summary["track_scale"], 1.0, delta=0.01)
+        # The calibrated odometry: the builder's scale times the GNSS correction, which is the
+        # simulated wheels' error (they read 0.57 % long: 0.9945), and flat2d-can reads it.
+        with open(calibrated) as f:
+            text = f.read()
+        scale = float(text.split("wheel_speed_scale:")[1].split()[0])
+        self.assertAlmostEqual(scale, summary["odometry_scale"] * summary["track_scale"], delta=1e-5)
+        if not QUICK:
+            self.assertAlmostEqual(scale, 0.9945, delta=0.003)
+        result = run(MAP.replace("flat2d-map", "flat2d-can"), "odom", "--dbc", os.path.join(d, "vehicle.dbc"),
+                     "--config", calibrated, os.path.join(d, "can.log"), "--tum", scaled + ".odom.tum")
+        self.assertEqual(result.returncode, 0, result.stderr)
         ate = json.loads(run(EVAL, "traj", "--truth", os.path.join(d, "truth.tum"), "--est", scaled + ".tum",
                              "--json").stdout)
         if not QUICK:
