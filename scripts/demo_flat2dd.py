@@ -57,7 +57,8 @@ def main():
     port = free_port(socket.SOCK_DGRAM)
     write_config(config, 'lidar { udp { bind_address: "127.0.0.1" port: %d position_port: %d } }' % (port, port),
                  'can { candump { path: "%s" } }' % os.path.join(drive, "can.log"),
-                 drive, os.path.join(out, "campus.f2m"), sock, pose_file, initial=truth.at(truth.t[1]))
+                 drive, os.path.join(out, "campus.f2m"), sock, pose_file, initial=truth.at(truth.t[1]),
+                 odometry=os.path.join(out, "campus.odometry.textproto"))  # the mapping drive's wheel calibration
     try:
         daemon = Daemon(config, sock)
         daemon.wait_ready()

@@ -410,6 +410,10 @@ int Build(int argc, char** argv) {
                 static_cast<unsigned long long>(st.tracking_accepted), static_cast<unsigned long long>(st.tracking_rejected),
                 static_cast<unsigned long long>(st.loop_accepted), static_cast<unsigned long long>(st.loop_candidates),
                 static_cast<unsigned long long>(st.loop_switched_off), st.odometry_scale, viewpoints.size());
+    if (map.track_scale_fixes > 0) {
+      std::printf("scale from %d GNSS fixes: %.6f (wheels %.6f)\n", map.track_scale_fixes, map.track_scale,
+                  st.odometry_scale * map.track_scale);
+    }
     std::printf("%s", maps::SummaryText(summary).c_str());
   }
   return 0;

@@ -143,10 +143,11 @@ class Daemon:
         return code, time.monotonic() - start
 
 
-def write_config(path, lidar, can, drive, map_path, sock, pose_file, initial=None):
+def write_config(path, lidar, can, drive, map_path, sock, pose_file, initial=None, odometry=None):
+    """A flat2dd configuration; odometry: a calibrated odometry file instead of the shipped one."""
     lines = [lidar, can,
              'dbc: "%s"' % os.path.join(drive, "vehicle.dbc"),
-             'odometry_config: "%s"' % os.path.join(TOOLS.packaging, "odometry", "flat2d_sim.textproto"),
+             'odometry_config: "%s"' % (odometry or os.path.join(TOOLS.packaging, "odometry", "flat2d_sim.textproto")),
              'grid_config: "%s"' % os.path.join(TOOLS.packaging, "grid", "structure_grid.textproto"),
              'localizer_config: "%s"' % os.path.join(TOOLS.packaging, "localizer", "localizer.textproto"),
              'map: "%s"' % map_path,
