@@ -162,13 +162,19 @@ def write_config(path, lidar, can, drive, map_path, sock, pose_file, initial=Non
 def build_map(mapping, map_path, timeout=600, scale_from_gnss=False):
     """flat2d-map build of a simulated mapping drive's folder with its CAN odometry, fitted to
     the truth track, as the map engineer runs it; with scale_from_gnss the map's scale comes
-    from the GNSS fixes in the drive's position packets (a drive simulated with --gnss-rtk)."""
-    gnss = ["--scale-from-gnss"] if scale_from_gnss else []
+    from the GNSS fixes in the drive's position packets (a drive simulated with --gnss-rtk),
+    and MAP.odometry.textproto is the vehicle's odometry with the wheel scale it measured."""
+    gnss = ["--scale-from-gnss", "--calibrated-odometry-out", calibrated_odometry(map_path)] if scale_from_gnss else []
     result = run(TOOLS.map, "build", "--pcap", os.path.join(mapping, "lidar.pcap"),
                  "--can", os.path.join(mapping, "can.log"), "--dbc", os.path.join(mapping, "vehicle.dbc"),
                  "--odometry", os.path.join(TOOLS.packaging, "odometry", "flat2d_sim.textproto"),
                  "--anchor", os.path.join(mapping, "truth.tum"), *gnss, "--out", map_path, timeout=timeout)
     assert result.returncode == 0, result.stderr
+
+
+def calibrated_odometry(map_path):
+    """Where build_map(scale_from_gnss=True) writes the calibrated odometry configuration."""
+    return os.path.splitext(map_path)[0] + ".odometry.textproto"
 
 
 def kill_running():
