@@ -266,8 +266,10 @@ Result<bool> Localizer::CoverMosaic(const Eigen::Vector2d& position, double max_
     const Status prepared = prefetch_->Finish();
     stats_.map_prefetch_cpu_s += prefetch_->last_job_cpu_s();
     if (prefetch_->last_finish_waited()) ++stats_.map_prefetch_waits;
-    // Near its centre, the prepared window holds all it must (map_window.hpp).
-    if (prepared.ok() && (position - prefetch_->centre()).norm() < 0.5 * recentre_m) {
+    // Near its centre, the prepared window holds all it must (map_window.hpp); a global
+    // search wants it as centred as a synchronous move would make it.
+    const double take_within_m = std::min(0.5 * recentre_m, max_offset_m);
+    if (prepared.ok() && (position - prefetch_->centre()).norm() < take_within_m) {
       prefetch_->Take(window_, matcher_);
       ++stats_.map_prefetches_taken;
       return true;
