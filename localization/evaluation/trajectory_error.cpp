@@ -6,9 +6,8 @@
 
 namespace flat2d::localization::evaluation {
 
-namespace {
-
 ErrorPercentiles PercentilesOf(std::vector<double> values) {
+  if (values.empty()) return {};
   std::sort(values.begin(), values.end());
   const auto rank = [&](double p) {
     const auto index = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size())));
@@ -16,8 +15,6 @@ ErrorPercentiles PercentilesOf(std::vector<double> values) {
   };
   return {rank(0.50), rank(0.95), rank(0.99)};
 }
-
-}  // namespace
 
 TrajectoryError EvaluateTrajectory(const std::vector<TimedPose>& estimate, const std::vector<TimedPose>& reference,
                                    bool align, double max_gap_s) {

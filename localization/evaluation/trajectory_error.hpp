@@ -20,6 +20,9 @@ struct ErrorPercentiles {
   double p99 = 0.0;
 };
 
+// ... of `values` (sorted here); all 0 when empty. The tools' CPU figures use it too.
+ErrorPercentiles PercentilesOf(std::vector<double> values);
+
 // The heading error's distribution as the thesis plots it (Fig. 7.10): |error| in bins of
 // kHeadingBinRad, the last bin holding everything beyond.
 inline constexpr double kHeadingBinRad = 0.005;

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <numbers>
 #include <utility>
 
+#include "hal/common/thread_cpu_time.hpp"
 #include "maps/grid/cell_class.hpp"
 
 namespace flat2d::localization {
@@ -14,16 +14,6 @@ namespace {
 // Added to the odometry's covariance before inverting it: standing still, dead reckoning
 // says "no motion, no noise" (dead_reckoning.hpp D6), which is not an information matrix.
 const Eigen::Matrix3d kOdometryCovarianceFloor = Eigen::Vector3d(1e-6, 1e-6, 1e-8).asDiagonal();
-
-double ThreadCpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
-Se2 Se2Of(const Eigen::Isometry2d& pose) {
-  return Se2(pose.translation(), std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)));
-}
 
 double PositionSigma(const Eigen::Matrix3d& covariance) {
   return std::sqrt(std::max(covariance(0, 0), covariance(1, 1)));

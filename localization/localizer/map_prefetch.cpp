@@ -1,20 +1,12 @@
 #include "localization/localizer/map_prefetch.hpp"
 
 #include <pthread.h>
-#include <time.h>
 
 #include <utility>
 
+#include "hal/common/thread_cpu_time.hpp"
+
 namespace flat2d::localization {
-namespace {
-
-double ThreadCpuSeconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
-}  // namespace
 
 MapPrefetch::MapPrefetch(MapWindow spare_window, std::unique_ptr<MatchMap> spare_map)
     : window_(std::move(spare_window)), map_(std::move(spare_map)), worker_([this] { Work(); }) {

@@ -147,4 +147,8 @@ Eigen::Matrix<double, 3, 2> ArcJacobian(double distance, double heading_change) 
   return j;
 }
 
+Se2 Se2Of(const Eigen::Isometry2d& pose) {
+  return Se2(pose.translation(), std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)));
+}
+
 }  // namespace flat2d::localization

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace flat2d::localization {
 
@@ -53,6 +54,10 @@ class Se2 {
   Eigen::Vector2d translation_ = Eigen::Vector2d::Zero();
   double theta_ = 0.0;
 };
+
+// The planar pose an isometry holds (the grids' and the gridder's type): translation, and
+// the heading of its x axis.
+Se2 Se2Of(const Eigen::Isometry2d& pose);
 
 // E3: a at s = 0, b at s = 1, constant body twist in between (s may leave [0, 1]).
 Se2 Interpolate(const Se2& a, const Se2& b, double s);

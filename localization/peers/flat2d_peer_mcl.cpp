@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "localization/evaluation/trajectory_error.hpp"
 #include "localization/evaluation/trajectory_file.hpp"
 #include "localization/peers/mcl_run.hpp"
 #include "localization/tools/shipped_config.hpp"
@@ -79,12 +80,12 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--out") a.out = value();
     else if (arg == "--initial-offset") {
       const auto v = list(3);
-      a.run.initial_offset = Eigen::Vector3d(v[0], v[1], v[2]);
+      a.run.initial.offset = Eigen::Vector3d(v[0], v[1], v[2]);
     } else if (arg == "--initial-sigma") {
       const auto v = list(2);
       if (!(v[0] > 0.0 && v[1] > 0.0)) Fail(1, "--initial-sigma must be positive");
-      a.run.initial_sigma_m = v[0];
-      a.run.initial_sigma_rad = v[1];
+      a.run.initial.sigma_m = v[0];
+      a.run.initial.sigma_rad = v[1];
     } else if (arg == "--particles") {
       a.run.mcl.particles = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value().c_str(), 1, 1'000'000));
     } else if (arg == "--resolution") {
@@ -110,17 +111,10 @@ Args ParseArgs(int argc, char** argv) {
   return a;
 }
 
-// Nearest-rank percentile of `values` (sorted here), 0 when empty.
-double Percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(values.size())));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
-
 void PrintSummary(const Args& a, const localization::peers::MclRunResult& result) {
   const localization::peers::OccupancyStats& o = result.occupancy;
-  std::vector<double> returns(result.scan_returns.begin(), result.scan_returns.end());
+  const auto returns = localization::evaluation::PercentilesOf({result.scan_returns.begin(), result.scan_returns.end()});
+  const auto step = localization::evaluation::PercentilesOf(result.step_cpu_ms);
   double total_ms = 0.0;
   for (double ms : result.step_cpu_ms) total_ms += ms;
   std::printf("{\"revolutions\": %llu, \"poses\": %zu, \"particles\": %d, \"resolution_m\": %.3f",
@@ -129,8 +123,7 @@ void PrintSummary(const Args& a, const localization::peers::MclRunResult& result
   std::printf(", \"occupancy\": {\"cells\": %zu, \"occupied\": %zu, \"free\": %zu, \"cpu_ms\": %.1f}", o.cells,
               o.occupied, o.free, result.occupancy_cpu_ms);
   std::printf(", \"scan_returns_p50\": %.0f, \"cpu_ms_p50\": %.3f, \"cpu_ms_p99\": %.3f, \"cpu_ms_total\": %.1f}\n",
-              Percentile(returns, 50), Percentile(result.step_cpu_ms, 50), Percentile(result.step_cpu_ms, 99),
-              total_ms);
+              returns.p50, step.p50, step.p99, total_ms);
 }
 
 }  // namespace
@@ -148,7 +141,7 @@ int main(int argc, char** argv) {
   run.grid = *grid;
   auto track = localization::evaluation::ReadTrajectory(*a.initial_from);
   if (!track.ok()) Fail(2, track.error().message);
-  run.initial_track = std::move(*track);
+  run.initial.track = std::move(*track);
   auto result = localization::peers::RunMcl(run);
   if (!result.ok()) Fail(2, result.error().message);
   if (Status written = localization::evaluation::WriteTrajectory(result->estimate, *a.out); !written.ok()) {

@@ -1,7 +1,5 @@
 #include "localization/peers/mcl_run.hpp"
 
-#include <time.h>
-
 #include <optional>
 #include <random>
 
@@ -12,6 +10,7 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/slam/CMonteCarloLocalization2D.h>
 
+#include "hal/common/thread_cpu_time.hpp"
 #include "localization/tools/grid_run.hpp"
 #include "localization/tools/odometry_poses.hpp"
 
@@ -20,15 +19,7 @@ namespace {
 
 constexpr double kNsToS = 1e-9;
 
-double ThreadCpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
-
-Se2 ToSe2(const Eigen::Isometry2d& pose) {
-  return Se2(pose.translation(), std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)));
-}
+double ThreadCpuMs() { return 1e3 * ThreadCpuSeconds(); }
 
 mrpt::obs::CActionRobotMovement2D::TMotionModelOptions MotionModel(const MclOptions& o) {
   mrpt::obs::CActionRobotMovement2D::TMotionModelOptions model;
@@ -65,7 +56,7 @@ class MclTracker {
 
   // Steps the filter with this revolution; false with `failure` set when it cannot start.
   bool Step(const maps::PublishedGrid& grid, MclRunResult& result) {
-    const Se2 local_T_grid = ToSe2(grid.local_T_grid);
+    const Se2 local_T_grid = Se2Of(grid.local_T_grid);
     const double time_s = static_cast<double>(grid.start_ns) * kNsToS;
     auto scan = mrpt::obs::CObservation2DRangeScan::Create();
     result.scan_returns.push_back(StructureScan(*grid.grid, options_.scan, *scan));
@@ -97,15 +88,15 @@ class MclTracker {
  private:
   // Particles drawn around the track's pose (plus the offset) at the first revolution.
   bool Start(double time_s) {
-    Se2 start;
-    if (!evaluation::PoseAt(options_.initial_track, time_s, 1.0, start)) {
-      failure_ = Error{"the initial-pose track does not cover the first revolution's time"};
+    const Result<Se2> start = InitialPoseAt(options_.initial, time_s, "first revolution");
+    if (!start.ok()) {
+      failure_ = start.error();
       return false;
     }
-    const Eigen::Vector3d at = start.Vector() + options_.initial_offset;
-    mcl_.resetDeterministic(mrpt::math::TPose2D(at.x(), at.y(), at.z()), static_cast<std::size_t>(options_.mcl.particles));
-    std::normal_distribution<double> position(0.0, options_.initial_sigma_m);
-    std::normal_distribution<double> heading(0.0, options_.initial_sigma_rad);
+    mcl_.resetDeterministic(mrpt::math::TPose2D(start->x(), start->y(), start->theta()),
+                            static_cast<std::size_t>(options_.mcl.particles));
+    std::normal_distribution<double> position(0.0, options_.initial.sigma_m);
+    std::normal_distribution<double> heading(0.0, options_.initial.sigma_rad);
     for (auto& particle : mcl_.m_particles) {
       particle.d.x += position(random_);
       particle.d.y += position(random_);
@@ -127,7 +118,7 @@ class MclTracker {
 }  // namespace
 
 Result<MclRunResult> RunMcl(const MclRunOptions& options) {
-  if (options.initial_track.empty()) return MakeError("no initial-pose track given");
+  if (!options.initial.pose && options.initial.track.empty()) return MakeError("no initial pose given");
   if (options.mcl.particles < 1) return MakeError("the particle count must be positive");
   auto reader = maps::PriorMapReader::Open(options.map);
   if (!reader.ok()) return reader.error();

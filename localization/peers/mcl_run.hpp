@@ -23,6 +23,7 @@
 #include "localization/evaluation/relations.hpp"
 #include "localization/peers/occupancy_from_prior_map.hpp"
 #include "localization/peers/structure_scan.hpp"
+#include "localization/tools/localize_run.hpp"
 #include "maps/grid/structure_grid_options.pb.h"
 
 namespace flat2d::localization::peers {
@@ -52,10 +53,7 @@ struct MclRunOptions {
   std::filesystem::path map;
   maps::StructureGridOptions grid;
   hal::velodyne::VelodyneStreamOptions stream;
-  std::vector<evaluation::TimedPose> initial_track;  // the start, read at the first revolution
-  Eigen::Vector3d initial_offset = Eigen::Vector3d::Zero();
-  double initial_sigma_m = 0.2;
-  double initial_sigma_rad = 0.02;
+  InitialPoseOptions initial;  // read at the first revolution, as flat2d-localize does
   MclOptions mcl;
   StructureScanOptions scan;
 };

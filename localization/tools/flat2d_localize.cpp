@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "localization/evaluation/trajectory_error.hpp"
 #include "localization/evaluation/trajectory_file.hpp"
 #include "localization/localizer/localizer_config.hpp"
 #include "localization/tools/localize_run.hpp"
@@ -110,14 +111,6 @@ Args ParseArgs(int argc, char** argv) {
   return a;
 }
 
-// Nearest-rank percentile of `values` (sorted here), 0 when empty.
-double Percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(values.size())));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
-
 bool WriteStates(const localization::LocalizeRunResult& result, const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "w");
   if (file == nullptr) return false;
@@ -171,9 +164,12 @@ void PrintSummary(const localization::LocalizeRunResult& result) {
     std::printf("%s\"%s\": %d", first ? "" : ", ", name.c_str(), count);
     first = false;
   }
+  const auto match = localization::evaluation::PercentilesOf(std::move(match_ms));
+  const auto solve = localization::evaluation::PercentilesOf(std::move(solve_ms));
+  const auto total = localization::evaluation::PercentilesOf(std::move(total_ms));
   std::printf("}, \"match_ms_p50\": %.3f, \"match_ms_p99\": %.3f, \"solve_ms_p50\": %.3f, \"solve_ms_p99\": %.3f",
-              Percentile(match_ms, 50), Percentile(match_ms, 99), Percentile(solve_ms, 50), Percentile(solve_ms, 99));
-  std::printf(", \"cpu_ms_p50\": %.3f, \"cpu_ms_p99\": %.3f}\n", Percentile(total_ms, 50), Percentile(total_ms, 99));
+              match.p50, match.p99, solve.p50, solve.p99);
+  std::printf(", \"cpu_ms_p50\": %.3f, \"cpu_ms_p99\": %.3f}\n", total.p50, total.p99);
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 // be written, 3 nothing to map (no keyframe).
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
@@ -13,12 +12,10 @@
 #include <string_view>
 #include <vector>
 
-#include <google/protobuf/text_format.h>
-
 #include "hal/carmen/carmen_log.hpp"
 #include "localization/evaluation/trajectory_file.hpp"
 #include "localization/mapping/carmen_map_build.hpp"
-#include "localization/odometry/odometry_config.hpp"
+#include "localization/tools/calibrated_odometry.hpp"
 #include "localization/tools/drive_map_build.hpp"
 #include "localization/tools/gnss_track.hpp"
 #include "localization/tools/shipped_config.hpp"
@@ -313,29 +310,6 @@ BuiltMap BuildDrive(const BuildArgs& a) {
   return out;
 }
 
-// The drive's odometry configuration with the wheel scale this build measured: the scale
-// the builder's odometry factors ended at, times the GNSS track's correction, times the
-// scale the configuration already had (the builder measured relative to it).
-void WriteCalibratedOdometry(const std::string& odometry_path, const BuiltMap& map, const std::string& path) {
-  auto config = localization::LoadOdometryConfig(odometry_path);
-  if (!config.ok()) Fail(2, config.error().message);
-  localization::DeadReckoningConfig& dr = *config->mutable_dead_reckoning();
-  const double given = dr.has_wheel_speed_scale() ? dr.wheel_speed_scale() : 1.0;
-  const double measured = given * map.stats.odometry_scale * map.track_scale;
-  dr.set_wheel_speed_scale(measured);
-  std::string text;
-  if (!google::protobuf::TextFormat::PrintToString(*config, &text)) Fail(2, "cannot format " + path);
-  char scales[160];
-  std::snprintf(scales, sizeof scales, "%.6f (odometry %.6f x track %.6f x given %.6f)", measured,
-                map.stats.odometry_scale, map.track_scale, given);
-  std::ofstream out(path);
-  out << "# " << odometry_path << " with the wheel scale measured by flat2d-map build: " << scales << "\n"
-      << "# proto-file: localization/odometry/odometry_config.proto\n"
-      << "# proto-message: flat2d.localization.OdometryConfig\n"
-      << text;
-  if (!out.flush()) Fail(2, "cannot write " + path);
-}
-
 // A viewpoint sub-map every `spacing` metres along the keyframes' path.
 std::vector<maps::ViewpointGrid> MakeViewpoints(const BuiltMap& map, double spacing, double range) {
   std::vector<maps::ViewpointGrid> viewpoints;
@@ -384,7 +358,11 @@ int Build(int argc, char** argv) {
   if (a.png) WritePreview(map, viewpoints, *a.png);
   WriteTrajectoryOrFail(map.estimate, a.trajectory);
   WriteTrajectoryOrFail(map.odometry, a.odometry_out);
-  if (a.calibrated_odometry_out) WriteCalibratedOdometry(*a.odometry, map, *a.calibrated_odometry_out);
+  if (a.calibrated_odometry_out) {
+    const Status written = localization::WriteCalibratedOdometry(*a.odometry, map.stats.odometry_scale,
+                                                                 map.track_scale, *a.calibrated_odometry_out);
+    if (!written.ok()) Fail(2, written.error().message);
+  }
   WriteTrajectoryOrFail(map.reference, a.reference_out);
 
   auto reader = maps::PriorMapReader::Open(a.out, 1);

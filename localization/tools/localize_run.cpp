@@ -37,17 +37,17 @@ class Pacer {
   std::chrono::steady_clock::time_point wall_start_;
 };
 
-Result<Se2> InitialPose(const InitialPoseOptions& initial, TimeNs time_ns) {
+}  // namespace
+
+Result<Se2> InitialPoseAt(const InitialPoseOptions& initial, double time_s, const std::string& what) {
   Se2 pose;
   if (initial.pose) {
     pose = *initial.pose;
-  } else if (!evaluation::PoseAt(initial.track, static_cast<double>(time_ns) * kNsToS, 1.0, pose)) {
-    return MakeError("the initial-pose track does not cover the first odometry sample's time");
+  } else if (!evaluation::PoseAt(initial.track, time_s, 1.0, pose)) {
+    return MakeError("the initial-pose track does not cover the " + what + "'s time");
   }
   return Se2(pose.translation() + initial.offset.head<2>(), pose.theta() + initial.offset.z());
 }
-
-}  // namespace
 
 Result<LocalizeRunResult> RunLocalization(const LocalizeRunOptions& options) {
   if (!options.initial.pose && options.initial.track.empty()) return MakeError("no initial pose given");
@@ -83,7 +83,8 @@ Result<LocalizeRunResult> RunLocalization(const LocalizeRunOptions& options) {
     const OdometrySample& sample = update->sample;
     if (!initialized) {
       initialized = true;
-      const Result<Se2> pose = InitialPose(options.initial, sample.time_ns);
+      const Result<Se2> pose =
+          InitialPoseAt(options.initial, static_cast<double>(sample.time_ns) * kNsToS, "first odometry sample");
       if (!pose.ok()) {
         failure = pose.error();
         return;

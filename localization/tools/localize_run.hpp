@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,6 +33,10 @@ struct InitialPoseOptions {
   double sigma_m = 0.2;
   double sigma_rad = 0.02;
 };
+
+// The initial pose at `time_s` (the first odometry sample's, or the first revolution's), with
+// the offset added; an error naming `what` when the track does not cover that time.
+Result<Se2> InitialPoseAt(const InitialPoseOptions& initial, double time_s, const std::string& what);
 
 struct LocalizeRunOptions {
   std::filesystem::path capture;
