@@ -1,0 +1,33 @@
+// Options of NICP registration (thesis 5.1.2-5.1.3, 5.3), field by field. The thesis'
+// values are the defaults; where it gives none (K, lambda) the chosen value says why.
+#pragma once
+
+namespace flat2d::localization::registration {
+
+enum class ErrorMetric {
+  kNicp,           // 6D point + normal error, Omega = diag(Omega^s, Omega^n) (Eq. 5.13)
+  kPointToPlane,   // Omega^n = 0: the thesis' point-to-plane baseline (5.1.3)
+};
+
+struct NicpOptions {
+  ErrorMetric metric = ErrorMetric::kNicp;
+  float max_distance_m = 0.5F;          // eps_d, Eq. 5.6
+  float max_log_curvature_ratio = 1.3F;  // eps_sigma, Eq. 5.7
+  float min_normal_dot = 0.95F;          // eps_n, Eq. 5.8
+  // K of Eq. 4.11. A flat point's Omega^s is 1/eps = 1000 along its normal, so K = 1
+  // is about 3 cm off the plane: beyond, a pair's pull stops growing.
+  double chi2_bound = 1.0;
+  // lambda of Eq. 5.15, relative to the mean diagonal of H, so the damping is the same
+  // for 1000 or 300000 pairs.
+  double damping = 1e-4;
+  // Scales Omega^n: 1 is Eq. 5.14 as written (Fig. 5.8 varies it).
+  double normal_weight = 1.0;
+  int iterations = 10;                   // 5.3
+  int min_inliers = 100;
+  // Stop early when a step moves less than this (metres and quaternion imaginary part).
+  double convergence_step = 1e-6;
+  // KD-tree mode: nearest neighbours on (p, alpha n) (Eq. 6.10).
+  float kdtree_alpha = 1.0F / 3.0F;
+};
+
+}  // namespace flat2d::localization::registration

@@ -1,0 +1,83 @@
+#include "maps/range3d/projection.hpp"
+
+#include <algorithm>
+
+namespace flat2d::maps::range3d {
+
+namespace {
+
+// Elevation bins of ~0.01 deg: finer than any LiDAR's laser spacing (0.33 deg at least).
+constexpr float kLutBinRad = 0.0002F;
+
+}  // namespace
+
+RangeProjection RangeProjection::Pinhole(const PinholeIntrinsics& intrinsics) {
+  RangeProjection projection;
+  projection.pinhole_ = true;
+  projection.intrinsics_ = intrinsics;
+  projection.rows_ = intrinsics.rows;
+  projection.cols_ = intrinsics.cols;
+  return projection;
+}
+
+RangeProjection RangeProjection::Spherical(const SphericalLayout& layout) {
+  RangeProjection projection;
+  projection.pinhole_ = false;
+  const std::vector<float>& elevation = layout.row_elevation_rad;
+  const bool descending = std::is_sorted(elevation.rbegin(), elevation.rend()) &&
+                          std::adjacent_find(elevation.begin(), elevation.end()) == elevation.end();
+  if (elevation.size() < 2 || layout.cols <= 0 || !descending) return projection;
+
+  projection.rows_ = static_cast<int>(elevation.size());
+  projection.cols_ = layout.cols;
+  projection.row_elevation_ = elevation;
+  projection.cols_per_rad_ = static_cast<float>(layout.cols) / (2.0F * kPi);
+  projection.mean_row_spacing_rad_ = (elevation.front() - elevation.back()) / static_cast<float>(elevation.size() - 1);
+
+  // A point belongs to the row whose elevation is nearest, up to half the gap to the next
+  // row; beyond the outermost rows, up to half the outermost gap.
+  const std::size_t last = elevation.size() - 1;
+  const float top = elevation[0] + 0.5F * (elevation[0] - elevation[1]);
+  const float bottom = elevation[last] - 0.5F * (elevation[last - 1] - elevation[last]);
+  projection.lut_min_elevation_ = bottom;
+  projection.lut_bins_per_rad_ = 1.0F / kLutBinRad;
+  const auto bins = static_cast<std::size_t>(std::ceil((top - bottom) / kLutBinRad));
+  projection.elevation_lut_.assign(bins, -1);
+  std::size_t row = last;
+  for (std::size_t bin = 0; bin < bins; ++bin) {
+    const float e = bottom + (static_cast<float>(bin) + 0.5F) * kLutBinRad;
+    while (row > 0 && std::abs(elevation[row - 1] - e) < std::abs(elevation[row] - e)) --row;
+    projection.elevation_lut_[bin] = static_cast<std::int16_t>(row);
+  }
+  return projection;
+}
+
+RangeProjection RangeProjection::SphericalBinned(int cols, int rows, float min_elevation_rad,
+                                                 float max_elevation_rad) {
+  SphericalLayout layout;
+  layout.cols = cols;
+  const float step = (max_elevation_rad - min_elevation_rad) / static_cast<float>(std::max(rows, 1));
+  for (int row = 0; row < rows; ++row) {
+    layout.row_elevation_rad.push_back(max_elevation_rad - (static_cast<float>(row) + 0.5F) * step);
+  }
+  return Spherical(layout);
+}
+
+Eigen::Vector3f RangeProjection::Unproject(int row, int col, float depth) const {
+  if (pinhole_) {  // Eq. 3.11
+    return {(static_cast<float>(col) - intrinsics_.cx) * depth / intrinsics_.fx,
+            (static_cast<float>(row) - intrinsics_.cy) * depth / intrinsics_.fy, depth};
+  }
+  const float azimuth = (static_cast<float>(col) + 0.5F) / cols_per_rad_ - kPi;
+  const float elevation = row_elevation_[static_cast<std::size_t>(row)];
+  const float horizontal = depth * std::cos(elevation);
+  return {horizontal * std::cos(azimuth), horizontal * std::sin(azimuth), depth * std::sin(elevation)};
+}
+
+Eigen::Vector2f RangeProjection::PixelsPerMetre(float depth) const {
+  if (!(depth > 0.0F)) return Eigen::Vector2f::Zero();
+  if (pinhole_) return {intrinsics_.fx / depth, intrinsics_.fy / depth};
+  return {cols_per_rad_ / depth, 1.0F / (mean_row_spacing_rad_ * depth)};
+}
+
+}  // namespace flat2d::maps::range3d

@@ -1,0 +1,59 @@
+// Local surface statistics of an organized cloud (thesis 5.1.1): for each point seen in
+// the index image, the mean and covariance (Eq. 3.35) of the points within radius R, its
+// normal, curvature and the information matrices NICP uses.
+//
+// Steps: integral images of the point moments (App. D); per pixel a rectangle sized from
+// R and the depth (R * pixels-per-metre), shrunk to the pixel's interval (8.1.3) so that it
+// does not straddle a depth jump; mean and covariance from four table reads; the
+// eigen-decomposition (Eq. 5.1) gives the normal (smallest eigenvector, turned towards the
+// viewpoint) and sigma = l1 / (l1 + l2 + l3). Where sigma is below the flatness cut the
+// covariance is forced to a disc (Eq. 5.2, eps) and Omega^s, Omega^n are its inverse
+// (Eq. 5.13, 5.14); elsewhere both are the identity.
+#pragma once
+
+#include "maps/range3d/index_image.hpp"
+#include "maps/range3d/integral_image.hpp"
+#include "maps/range3d/interval_image.hpp"
+#include "maps/range3d/projection.hpp"
+#include "maps/range3d/surfel_cloud.hpp"
+
+namespace flat2d::maps::range3d {
+
+struct SurfaceStatisticsOptions {
+  float radius_m = 0.1F;          // R: 0.1 m indoors (5.1.1)
+  int min_points = 8;             // fewer points in the rectangle: normal undefined
+  int max_half_size_px = 32;      // bounds the rectangle of near points (work and smoothing)
+  float depth_jump_ratio = 0.1F;  // interval cut: neighbours 10 % apart in depth are a jump
+  float flat_curvature = 0.02F;   // sigma below this: a disc (the thesis leaves it open)
+  float disc_epsilon = 1e-3F;     // eps of Eq. 5.2
+};
+
+class SurfaceStatistics {
+ public:
+  explicit SurfaceStatistics(const SurfaceStatisticsOptions& options) : options_(options) {}
+
+  // Fills cloud's normals, curvature and information for the points `image` indexes;
+  // cloud.points must be what `image` was built from. Points the image does not show
+  // keep an undefined normal.
+  void Compute(const RangeProjection& projection, const IndexImage& image, SurfelCloud& cloud);
+
+ private:
+  void ComputePixel(const RangeProjection& projection, const IndexImage& image, int row, int col,
+                    SurfelCloud& cloud) const;
+
+  const SurfaceStatisticsOptions options_;
+  IntegralImage integral_;
+  IntervalImage intervals_;
+};
+
+// Point `index`'s surface from the covariance of its neighbourhood: normal (turned to
+// have a positive dot with `towards_viewpoint`), curvature and information. Leaves the
+// normal undefined for a degenerate covariance.
+void AssignSurface(const Eigen::Matrix3d& covariance, const Eigen::Vector3f& towards_viewpoint,
+                   const SurfaceStatisticsOptions& options, std::size_t index, SurfelCloud& cloud);
+
+// The disc-shaped information of a surface with unit normal n (Eq. 5.2 inverted, 5.14):
+// 1/eps along n, 1 across.
+Eigen::Matrix3f DiscInformation(const Eigen::Vector3f& normal, float epsilon);
+
+}  // namespace flat2d::maps::range3d

@@ -1,0 +1,142 @@
+#include "localization/registration/nicp.hpp"
+#include "localization/registration/linear_system.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+#include <gtest/gtest.h>
+
+#include "maps/range3d/depth_cloud.hpp"
+#include "maps/range3d/neighbour_statistics.hpp"
+#include "maps/range3d/surface_statistics.hpp"
+#include "tests/testing/box_scene.hpp"
+
+namespace flat2d::localization::registration {
+namespace {
+
+using maps::range3d::IndexImage;
+using maps::range3d::RangeProjection;
+using maps::range3d::SurfelCloud;
+
+Eigen::Isometry3f CameraPose() {
+  Eigen::Matrix3f world_R_optical;
+  world_R_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
+  pose.linear() = world_R_optical * Eigen::AngleAxisf(0.4F, Eigen::Vector3f::UnitY()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3f(-1.5F, 0.3F, 1.4F);
+  return pose;
+}
+
+Eigen::Isometry3f RandomMotion(std::mt19937& rng, float max_angle_rad, float max_translation_m) {
+  std::uniform_real_distribution<float> unit(-1.0F, 1.0F);
+  const Eigen::Vector3f axis = Eigen::Vector3f(unit(rng), unit(rng), unit(rng)).normalized();
+  Eigen::Isometry3f motion = Eigen::Isometry3f::Identity();
+  motion.linear() = Eigen::AngleAxisf(max_angle_rad * std::abs(unit(rng)), axis).toRotationMatrix();
+  motion.translation() = max_translation_m * Eigen::Vector3f(unit(rng), unit(rng), unit(rng));
+  return motion;
+}
+
+SurfelCloud DepthFrame(const Eigen::Isometry3f& world_T_camera, const RangeProjection& projection) {
+  std::mt19937 rng(3);
+  const auto depth = testing::RenderDepth(testing::OfficeRoom(), projection.intrinsics(), world_T_camera, 0.002F, rng);
+  SurfelCloud cloud;
+  IndexImage image;
+  maps::range3d::CloudFromDepth(depth, projection, 8.0F, cloud, image);
+  maps::range3d::SurfaceStatistics(maps::range3d::SurfaceStatisticsOptions{}).Compute(projection, image, cloud);
+  return cloud;
+}
+
+struct Errors {
+  double translation_m;
+  double rotation_deg;
+};
+
+Errors ErrorOf(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth) {
+  const Eigen::Isometry3d error = truth.inverse() * estimate;
+  return {error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI};
+}
+
+class NicpOnDepthFrames : public ::testing::TestWithParam<ErrorMetric> {};
+
+TEST_P(NicpOnDepthFrames, RecoversSeededMotionsFromIdentity) {
+  const RangeProjection projection = RangeProjection::Pinhole({});
+  const Eigen::Isometry3f world_T_target = CameraPose();
+  const SurfelCloud target = DepthFrame(world_T_target, projection);
+  ProjectiveCorrespondenceFinder finder(target, projection);
+  NicpOptions options;
+  options.metric = GetParam();
+  Nicp nicp(options);
+  std::mt19937 rng(42);
+  std::printf("seed 42\n");
+  for (int trial = 0; trial < 6; ++trial) {
+    const Eigen::Isometry3f target_T_source = RandomMotion(rng, 4.0F * static_cast<float>(M_PI) / 180.0F, 0.05F);
+    const SurfelCloud source = DepthFrame(world_T_target * target_T_source, projection);
+    const RegistrationResult result = nicp.Register(target, finder, source, Eigen::Isometry3d::Identity());
+    ASSERT_TRUE(result.ok()) << FailureName(result.failure);
+    const Errors e = ErrorOf(result.target_T_source, target_T_source.cast<double>());
+    std::printf("trial %d: %.2f mm %.3f deg, %d inliers, %d iterations\n", trial, 1e3 * e.translation_m,
+                e.rotation_deg, result.inliers, result.iterations);
+    EXPECT_LT(e.translation_m, 0.003) << "trial " << trial;
+    EXPECT_LT(e.rotation_deg, 0.1) << "trial " << trial;
+    EXPECT_GT(result.inliers, 50000);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Metrics, NicpOnDepthFrames, ::testing::Values(ErrorMetric::kNicp, ErrorMetric::kPointToPlane));
+
+TEST(Nicp, IdenticalFramesStayAtIdentityAndReportInformation) {
+  const RangeProjection projection = RangeProjection::Pinhole({});
+  const SurfelCloud frame = DepthFrame(CameraPose(), projection);
+  ProjectiveCorrespondenceFinder finder(frame, projection);
+  const RegistrationResult result = Nicp(NicpOptions{}).Register(frame, finder, frame, Eigen::Isometry3d::Identity());
+  ASSERT_TRUE(result.ok());
+  const Errors e = ErrorOf(result.target_T_source, Eigen::Isometry3d::Identity());
+  EXPECT_LT(e.translation_m, 1e-5);
+  EXPECT_LT(e.rotation_deg, 1e-3);
+  EXPECT_TRUE(result.converged);
+  // Six walls seen: every direction constrained, H positive definite.
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Matrix6d>(result.information).eigenvalues().minCoeff(), 1.0);
+}
+
+TEST(Nicp, AFrameWithoutStructureFailsWithAReason) {
+  const RangeProjection projection = RangeProjection::Pinhole({});
+  const SurfelCloud target = DepthFrame(CameraPose(), projection);
+  ProjectiveCorrespondenceFinder finder(target, projection);
+  SurfelCloud empty;
+  empty.Resize(0);
+  const RegistrationResult result = Nicp(NicpOptions{}).Register(target, finder, empty, Eigen::Isometry3d::Identity());
+  EXPECT_EQ(result.failure, RegistrationFailure::kTooFewCorrespondences);
+  EXPECT_EQ(result.iterations, 1);
+}
+
+TEST(Nicp, KdTreeModeAlignsUnorganizedClouds) {
+  const RangeProjection projection = RangeProjection::Pinhole({160, 120, 131.25F, 131.25F, 79.5F, 59.5F});
+  std::mt19937 rng(11);
+  const Eigen::Isometry3f world_T_target = CameraPose();
+  const Eigen::Isometry3f target_T_source = RandomMotion(rng, 3.0F * static_cast<float>(M_PI) / 180.0F, 0.04F);
+  auto unorganized = [&](const Eigen::Isometry3f& pose) {
+    std::mt19937 noise(5);
+    const auto depth = testing::RenderDepth(testing::OfficeRoom(), projection.intrinsics(), pose, 0.0F, noise);
+    SurfelCloud cloud;
+    IndexImage image;
+    maps::range3d::CloudFromDepth(depth, projection, 8.0F, cloud, image);
+    maps::range3d::ComputeNeighbourStatistics(maps::range3d::SurfaceStatisticsOptions{}, Eigen::Vector3f::Zero(), cloud);
+    return cloud;
+  };
+  const SurfelCloud target = unorganized(world_T_target);
+  const SurfelCloud source = unorganized(world_T_target * target_T_source);
+  NicpOptions options;
+  options.iterations = 30;
+  KdTreeCorrespondenceFinder finder(target, options.kdtree_alpha);
+  const RegistrationResult result = Nicp(options).Register(target, finder, source, Eigen::Isometry3d::Identity());
+  ASSERT_TRUE(result.ok());
+  const Errors e = ErrorOf(result.target_T_source, target_T_source.cast<double>());
+  std::printf("kd-tree: %.2f mm %.3f deg, %d iterations\n", 1e3 * e.translation_m, e.rotation_deg, result.iterations);
+  EXPECT_LT(e.translation_m, 0.01);
+  EXPECT_LT(e.rotation_deg, 0.3);
+}
+
+}  // namespace
+}  // namespace flat2d::localization::registration

@@ -1,0 +1,94 @@
+#include "maps/range3d/projection.hpp"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace flat2d::maps::range3d {
+namespace {
+
+constexpr float kDegToRad = 3.14159265358979F / 180.0F;
+
+TEST(RangeProjection, PinholeRoundTripsEveryPixel) {
+  const RangeProjection projection = RangeProjection::Pinhole({});
+  for (int row = 0; row < projection.rows(); row += 7) {
+    for (int col = 0; col < projection.cols(); col += 5) {
+      const float depth = 0.5F + 0.01F * static_cast<float>(row + col);
+      const Pixel pixel = projection.Project(projection.Unproject(row, col, depth));
+      ASSERT_TRUE(pixel.valid());
+      EXPECT_EQ(pixel.row, row);
+      EXPECT_EQ(pixel.col, col);
+      EXPECT_NEAR(pixel.depth, depth, 1e-5F);
+    }
+  }
+}
+
+TEST(RangeProjection, PinholeMatchesEq311) {
+  // (u - cx) d / f with the TUM default intrinsics: pixel (0, 0) at 2 m.
+  const RangeProjection projection = RangeProjection::Pinhole({});
+  const Eigen::Vector3f p = projection.Unproject(0, 0, 2.0F);
+  EXPECT_NEAR(p.x(), -319.5F * 2.0F / 525.0F, 1e-5F);
+  EXPECT_NEAR(p.y(), -239.5F * 2.0F / 525.0F, 1e-5F);
+  EXPECT_FALSE(projection.Project({0.0F, 0.0F, -1.0F}).valid());   // behind the camera
+  EXPECT_FALSE(projection.Project({10.0F, 0.0F, 1.0F}).valid());   // outside the image
+}
+
+// HDL-32E: elevations -30.67 .. +10.67 deg in steps of 4/3 (user manual table).
+SphericalLayout Hdl32Layout() {
+  SphericalLayout layout;
+  layout.cols = 2160;
+  for (int row = 0; row < 32; ++row) layout.row_elevation_rad.push_back((10.67F - 1.3333F * static_cast<float>(row)) * kDegToRad);
+  return layout;
+}
+
+TEST(RangeProjection, SphericalFindsTheLaserByElevation) {
+  const RangeProjection projection = RangeProjection::Spherical(Hdl32Layout());
+  ASSERT_EQ(projection.rows(), 32);
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<float> azimuth(-3.14F, 3.14F), jitter(-0.6F, 0.6F), range(1.0F, 80.0F);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int laser = trial % 32;
+    const float elevation = (10.67F - 1.3333F * static_cast<float>(laser) + jitter(rng)) * kDegToRad;
+    const float a = azimuth(rng), r = range(rng);
+    const Eigen::Vector3f p(r * std::cos(elevation) * std::cos(a), r * std::cos(elevation) * std::sin(a), r * std::sin(elevation));
+    const Pixel pixel = projection.Project(p);
+    ASSERT_TRUE(pixel.valid()) << "trial " << trial;
+    EXPECT_EQ(pixel.row, laser) << "trial " << trial;
+    EXPECT_NEAR(pixel.depth, r, 1e-3F * r);
+    EXPECT_NEAR(static_cast<float>(pixel.col), (a + 3.14159265F) / (2.0F * 3.14159265F) * 2160.0F, 1.01F);
+  }
+  // Beyond half a gap above the top laser or below the bottom one: no row.
+  EXPECT_FALSE(projection.Project({std::cos(12.0F * kDegToRad), 0.0F, std::sin(12.0F * kDegToRad)}).valid());
+  EXPECT_FALSE(projection.Project({std::cos(-32.0F * kDegToRad), 0.0F, std::sin(-32.0F * kDegToRad)}).valid());
+}
+
+TEST(RangeProjection, SphericalRoundTripsPixelCentres) {
+  const RangeProjection projection = RangeProjection::Spherical(Hdl32Layout());
+  for (int row = 0; row < 32; ++row) {
+    for (int col = 0; col < 2160; col += 37) {
+      const Pixel pixel = projection.Project(projection.Unproject(row, col, 12.5F));
+      ASSERT_TRUE(pixel.valid());
+      EXPECT_EQ(pixel.row, row);
+      EXPECT_EQ(pixel.col, col);
+      EXPECT_NEAR(pixel.depth, 12.5F, 1e-4F);
+    }
+  }
+}
+
+TEST(RangeProjection, SphericalRejectsAnUnsortedTable) {
+  SphericalLayout layout = Hdl32Layout();
+  std::swap(layout.row_elevation_rad[3], layout.row_elevation_rad[4]);
+  EXPECT_EQ(RangeProjection::Spherical(layout).rows(), 0);
+  EXPECT_EQ(RangeProjection::Spherical(SphericalLayout{}).rows(), 0);
+}
+
+TEST(RangeProjection, BinnedRowsSpanTheElevationRange) {
+  const RangeProjection projection = RangeProjection::SphericalBinned(2048, 64, -25.0F * kDegToRad, 3.0F * kDegToRad);
+  ASSERT_EQ(projection.rows(), 64);
+  EXPECT_EQ(projection.Project({1.0F, 0.0F, std::tan(2.9F * kDegToRad)}).row, 0);
+  EXPECT_EQ(projection.Project({1.0F, 0.0F, std::tan(-24.9F * kDegToRad)}).row, 63);
+}
+
+}  // namespace
+}  // namespace flat2d::maps::range3d
