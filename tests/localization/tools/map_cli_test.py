@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """flat2d-map and flat2d-eval (relations, traj) as users' scripts call them: a simulated
 drive built into a prior map against its truth map and trajectory; the map's info and
-renders; a real 2D laser log built and judged by the relations metric; exit statuses on
-bad input.
+renders; a real 2D laser log built and judged by the relations metric; traj --3d on a
+written 3D trajectory and on the TUM RGB-D fr1/rpy truth; exit statuses on bad input.
 
 usage: map_cli_test.py FLAT2D_MAP FLAT2D_EVAL FLAT2D_SIM DATA_DIR SOURCE_DIR WORK_DIR [quick]
 The real-log test skips (with a message) when the shared data folder is absent. "quick"
@@ -10,6 +10,7 @@ The real-log test skips (with a message) when the shared data folder is absent. 
 the log, and checks what they write but not the accuracy, which the release build checks.
 """
 import json
+import math
 import os
 import subprocess
 import sys
@@ -215,6 +216,103 @@ class LaserLogMap(unittest.TestCase):
         result = run(EVAL, "relations", "--trajectory", out + ".tum", "--relations", relations, "--json")
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertAlmostEqual(json.loads(result.stdout)["translation_mean_m"], scores[""]["translation_mean_m"], 3)
+
+
+TRAJ_3D_KEYS = {"ate_rmse_m", "ate_mean_m", "ate_median_m", "ate_max_m", "rpe_frame_trans_rmse_m",
+                "rpe_frame_rot_rmse_deg", "rpe_frame_trans_median_m", "rpe_frame_rot_median_deg", "rpe_delta_s",
+                "rpe_delta_trans_rmse_m", "rpe_delta_rot_rmse_deg", "rpe_delta_trans_median_m",
+                "rpe_delta_rot_median_deg", "poses_matched", "pairs_frame", "pairs_delta"}
+
+
+def write_helix(path, times_ns, turn=0.0, shift=(0.0, 0.0, 0.0)):
+    """A climbing circle turning with its heading, moved by `turn` about z and by `shift`;
+    the times in integer nanoseconds from fr1's epoch, printed exactly."""
+    c, s = math.cos(turn), math.sin(turn)
+    with open(path, "w") as f:
+        f.write("# t x y z qx qy qz qw\n")
+        for ns in times_ns:
+            t = ns * 1e-9
+            x, y, z = math.cos(0.5 * t), math.sin(0.5 * t), 0.1 * t
+            yaw = 0.5 * t + turn
+            f.write(f"{1305031225 + ns // 10**9}.{ns % 10**9:09d} {c * x - s * y + shift[0]:.9f} "
+                    f"{s * x + c * y + shift[1]:.9f} {z + shift[2]:.9f} 0 0 {math.sin(yaw / 2):.12f} "
+                    f"{math.cos(yaw / 2):.12f}\n")
+
+
+def every(step_ns, count, start_ns=0):
+    return [start_ns + i * step_ns for i in range(count)]
+
+
+class Trajectory3d(unittest.TestCase):
+    def traj(self, *args):
+        result = run(EVAL, "traj", *args)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        return result.stdout
+
+    def test_moved_estimate_at_its_own_rate(self):
+        # Truth at 100 Hz for 4 s; the estimate at 30 Hz, 5 ms off the truth's times, turned
+        # 90 degrees and 5 m away: interpolated and aligned, nothing is left but the chords.
+        os.makedirs(WORK, exist_ok=True)
+        truth, estimate = os.path.join(WORK, "helix_truth.tum"), os.path.join(WORK, "helix_est.tum")
+        write_helix(truth, every(10**7, 400))
+        write_helix(estimate, [5 * 10**6 + i * 10**9 // 30 for i in range(119)], turn=math.pi / 2,
+                    shift=(5.0, -2.0, 1.0))
+        e = json.loads(self.traj("--truth", truth, "--est", estimate, "--3d", "--json"))
+        self.assertEqual(set(e), TRAJ_3D_KEYS)
+        self.assertEqual(e["poses_matched"], 119)
+        self.assertEqual(e["pairs_frame"], 118)
+        self.assertEqual(e["pairs_delta"], 119 - 30)
+        self.assertEqual(e["rpe_delta_s"], 1.0)
+        self.assertLess(e["ate_rmse_m"], 1e-4, e)
+        self.assertLessEqual(e["ate_median_m"], e["ate_max_m"])
+        for key in ("rpe_frame_trans_rmse_m", "rpe_delta_trans_rmse_m"):
+            self.assertLess(e[key], 1e-4, e)
+        for key in ("rpe_frame_rot_rmse_deg", "rpe_delta_rot_rmse_deg"):
+            self.assertLess(e[key], 1e-3, e)
+        half = json.loads(self.traj("--truth", truth, "--est", estimate, "--3d", "--delta", "0.5", "--json"))
+        self.assertEqual(half["rpe_delta_s"], 0.5)
+        self.assertEqual(half["pairs_delta"], 119 - 15)
+        text = self.traj("--truth", truth, "--est", estimate, "--3d")
+        for line in ("poses: 119 matched", "ATE (SE(3)-aligned)", "RPE per frame (118 pairs)", "RPE over 1 s"):
+            self.assertIn(line, text)
+        # The planar evaluation of the same files is unchanged: it samples the estimate.
+        planar = json.loads(self.traj("--truth", truth, "--est", estimate, "--align", "--json"))
+        self.assertIn("heading_histogram", planar)
+        self.assertNotIn("rpe_delta_s", planar)
+
+    def test_tum_fr1_rpy_truth_10_ms_late(self):
+        truth = os.path.join(DATA, "depth", "tum_rgbd_fr1_rpy_first200", "groundtruth.txt")
+        if not os.path.exists(truth):
+            self.skipTest(f"no TUM RGB-D truth at {truth} (set FLAT2D_DATA to the shared data folder)")
+        same = json.loads(self.traj("--truth", truth, "--est", truth, "--3d", "--json"))
+        self.assertEqual(same["poses_matched"], 2742)
+        self.assertEqual(same["ate_max_m"], 0.0)
+        self.assertEqual(same["rpe_frame_rot_rmse_deg"], 0.0)
+        late = os.path.join(WORK, "fr1_rpy_late.tum")
+        with open(truth) as f, open(late, "w") as out:
+            for line in f:
+                if not line.startswith("#"):
+                    t, rest = line.split(" ", 1)
+                    out.write(f"{float(t) + 0.01:.4f} {rest}")
+        # The library test computes these figures independently (0.001043 m, 0.220053 deg).
+        e = json.loads(self.traj("--truth", truth, "--est", late, "--3d", "--json"))
+        self.assertEqual(e["poses_matched"], 2734)  # the last pose and 7 in the truth's gaps
+        self.assertAlmostEqual(e["ate_rmse_m"], 0.001043, delta=2e-6)
+        self.assertAlmostEqual(e["rpe_frame_rot_rmse_deg"], 0.220053, delta=2e-6)
+
+    def test_bad_input(self):
+        os.makedirs(WORK, exist_ok=True)
+        truth, later = os.path.join(WORK, "bad_truth.tum"), os.path.join(WORK, "bad_later.tum")
+        write_helix(truth, every(10**7, 100))
+        write_helix(later, every(10**7, 100, start_ns=100 * 10**9))
+        common = ["traj", "--truth", truth, "--est", truth]
+        self.assertEqual(run(EVAL, *common, "--delta", "1").returncode, 1)  # --delta goes with --3d
+        for bad in (["--delta", "0"], ["--delta", "nan"], ["--max-gap", "-1"], ["--plot", "x"], ["--no-align"]):
+            self.assertEqual(run(EVAL, *common, "--3d", *bad).returncode, 1, bad)
+        self.assertEqual(run(EVAL, "traj", "--truth", truth, "--est", "/nonexistent.tum", "--3d").returncode, 2)
+        result = run(EVAL, "traj", "--truth", truth, "--est", later, "--3d")
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("none of the estimate's 100 poses", result.stderr)
 
 
 if __name__ == "__main__":
