@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -93,6 +94,28 @@ Result<std::vector<StampedPose>> ReadTum(const std::filesystem::path& path) {
   std::stringstream contents;
   contents << in.rdbuf();
   return ParseTum(contents.str(), path.string());
+}
+
+Status WriteTum(const std::vector<StampedPose>& poses, const std::filesystem::path& path) {
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (file == nullptr) return MakeError(path.string() + ": cannot open for writing");
+  std::fprintf(file, "# timestamp tx ty tz qx qy qz qw\n");
+  for (const StampedPose& pose : poses) {
+    if (pose.time_ns < 0) {
+      std::fclose(file);
+      return MakeError(path.string() + ": a pose before the epoch (" + std::to_string(pose.time_ns) + " ns)");
+    }
+    Eigen::Quaterniond q(pose.world_T_body.linear());
+    q.normalize();
+    if (q.w() < 0.0) q.coeffs() = -q.coeffs();
+    const Eigen::Vector3d t = pose.world_T_body.translation();
+    const TimeNs seconds = pose.time_ns / kNsPerSecond, fraction = pose.time_ns % kNsPerSecond;
+    std::fprintf(file, "%lld.%09lld %.7f %.7f %.7f %.9f %.9f %.9f %.9f\n", static_cast<long long>(seconds),
+                 static_cast<long long>(fraction), t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+  }
+  const bool ok = std::ferror(file) == 0;
+  if (std::fclose(file) != 0 || !ok) return MakeError(path.string() + ": write failed");
+  return Status::Ok();
 }
 
 }  // namespace flat2d::hal::trajectory

@@ -28,4 +28,8 @@ Result<std::vector<StampedPose>> ReadTum(const std::filesystem::path& path);
 // The same for text in memory; `source_name` starts error messages.
 Result<std::vector<StampedPose>> ParseTum(std::string_view text, std::string_view source_name);
 
+// Writes poses as TUM lines (time with nanosecond digits, positions to 0.1 um, unit
+// quaternions with w >= 0); an error names the file if it cannot be written.
+Status WriteTum(const std::vector<StampedPose>& poses, const std::filesystem::path& path);
+
 }  // namespace flat2d::hal::trajectory

@@ -36,5 +36,23 @@ TEST(TumFile, MalformedLinesAreErrorsWithTheLineNumber) {
   EXPECT_FALSE(ReadTum("/nonexistent/truth.tum").ok());
 }
 
+TEST(TumFile, WrittenPosesReadBackExactly) {
+  std::vector<StampedPose> poses(2);
+  poses[0].time_ns = 1305031229528784000;
+  poses[0].world_T_body.translation() = Eigen::Vector3d(1.25, -0.5, 2.0);
+  poses[1].time_ns = 1305031229564442123;
+  poses[1].world_T_body.linear() = Eigen::AngleAxisd(2.5, Eigen::Vector3d(0.3, -1, 0.2).normalized()).toRotationMatrix();
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "flat2d_tum_write_test.tum";
+  ASSERT_TRUE(WriteTum(poses, path).ok());
+  const auto read = ReadTum(path);
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  ASSERT_EQ(read->size(), 2U);
+  EXPECT_EQ((*read)[1].time_ns, poses[1].time_ns);
+  EXPECT_LT(((*read)[0].world_T_body.translation() - poses[0].world_T_body.translation()).norm(), 1e-7);
+  EXPECT_LT(((*read)[1].world_T_body.linear() - poses[1].world_T_body.linear()).cwiseAbs().maxCoeff(), 1e-8);
+  std::filesystem::remove(path);
+  EXPECT_FALSE(WriteTum(poses, "/nonexistent/dir/t.tum").ok());
+}
+
 }  // namespace
 }  // namespace flat2d::hal::trajectory
