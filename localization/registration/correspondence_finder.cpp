@@ -14,6 +14,7 @@ ProjectiveCorrespondenceFinder::ProjectiveCorrespondenceFinder(const SurfelCloud
 void ProjectiveCorrespondenceFinder::Find(const SurfelCloud& source, const Eigen::Isometry3f& target_T_source,
                                           const NicpOptions& options, std::vector<Correspondence>& pairs) {
   pairs.clear();
+  const CompatibilityTest test(options);
   source_image_.Build(projection_, source.points, source.normals, target_T_source);
   const Eigen::Matrix3f rotation = target_T_source.linear();
   const std::vector<std::int32_t>& target_pixels = target_image_.indices();
@@ -24,7 +25,7 @@ void ProjectiveCorrespondenceFinder::Find(const SurfelCloud& source, const Eigen
     if (i < 0 || j < 0) continue;
     const auto si = static_cast<std::size_t>(i), sj = static_cast<std::size_t>(j);
     if (Compatible(target_, si, target_T_source * source.points[sj], rotation * source.normals[sj],
-                   source.curvature[sj], options)) {
+                   source.curvature[sj], test)) {
       pairs.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
     }
   }
@@ -36,6 +37,7 @@ KdTreeCorrespondenceFinder::KdTreeCorrespondenceFinder(const SurfelCloud& target
 void KdTreeCorrespondenceFinder::Find(const SurfelCloud& source, const Eigen::Isometry3f& target_T_source,
                                       const NicpOptions& options, std::vector<Correspondence>& pairs) {
   pairs.clear();
+  const CompatibilityTest test(options);
   const Eigen::Matrix3f rotation = target_T_source.linear();
   for (std::size_t j = 0; j < source.size(); ++j) {
     if (!source.has_normal(j)) continue;
@@ -44,7 +46,7 @@ void KdTreeCorrespondenceFinder::Find(const SurfelCloud& source, const Eigen::Is
     const float query[6] = {point.x(), point.y(), point.z(), alpha_ * normal.x(), alpha_ * normal.y(), alpha_ * normal.z()};
     const auto [i, distance_squared] = tree_.Nearest(query);
     if (i < 0) return;
-    if (Compatible(target_, static_cast<std::size_t>(i), point, normal, source.curvature[j], options)) {
+    if (Compatible(target_, static_cast<std::size_t>(i), point, normal, source.curvature[j], test)) {
       pairs.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
     }
   }

@@ -1,6 +1,6 @@
 // flat2d-map: prior maps (issue 8). build: a drive or a 2D laser log through the map builder
 // into a prior map file; info: what a map file holds; render: a map (or a region of it) as
-// a picture or a map_server class grid.
+// a picture or a map_server class grid; register: NICP between two range files (issue 11).
 // Exit status: 0 ok, 1 usage or option error, 2 a file cannot be read, is invalid or cannot
 // be written, 3 nothing to map (no keyframe).
 #include <cmath>
@@ -18,6 +18,8 @@
 #include "localization/tools/calibrated_odometry.hpp"
 #include "localization/tools/drive_map_build.hpp"
 #include "localization/tools/gnss_track.hpp"
+#include "localization/tools/nicp_build_command.hpp"
+#include "localization/tools/register_command.hpp"
 #include "localization/tools/shipped_config.hpp"
 #include "maps/grid/class_grid_file.hpp"
 #include "maps/grid/grid_crop.hpp"
@@ -43,6 +45,8 @@ constexpr const char* kUsage = R"(usage:
   flat2d-map build --pcap CAPTURE --can LOG --dbc DBC --odometry CONFIG --out MAP [options]
   flat2d-map info MAP [--json]
   flat2d-map render MAP --out FILE [--region XMIN,YMIN,XMAX,YMAX]
+  flat2d-map build --mode nicp LIST --out DIR [options]
+  flat2d-map register SOURCE TARGET [--init FILE] [--method M] [--json] [options]
 
 build: keyframes every --keyframe-distance metres or --keyframe-angle radians, each
 scan-matched against the previous keyframes (tracking) and against earlier keyframes near
@@ -160,6 +164,7 @@ BuildArgs ParseBuild(int argc, char** argv) {
     auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     auto number = [&] { return maps::cli::ParseNumber(kTool, arg, value()); };
     if (arg == "--carmen") a.carmen = value();
+    else if (arg == "--mode") value();  // grid: NicpMode() sent nicp elsewhere
     else if (arg == "--pcap") a.pcap = value();
     else if (arg == "--can") a.can = value();
     else if (arg == "--dbc") a.dbc = value();
@@ -343,7 +348,18 @@ void WriteTrajectoryOrFail(const std::vector<TimedPose>& trajectory, const std::
   if (Status s = localization::evaluation::WriteTrajectory(trajectory, *path); !s.ok()) Fail(2, s.error().message);
 }
 
+bool NicpMode(int argc, char** argv) {
+  for (int i = 0; i + 1 < argc; ++i) {
+    if (std::string_view(argv[i]) != "--mode") continue;
+    const std::string_view mode = argv[i + 1];
+    if (mode != "nicp" && mode != "grid") Fail(1, "build: --mode is grid (default) or nicp");
+    return mode == "nicp";
+  }
+  return false;
+}
+
 int Build(int argc, char** argv) {
+  if (NicpMode(argc, argv)) return localization::tools::NicpBuildCommand(argc, argv);
   const BuildArgs a = ParseBuild(argc, argv);
   BuiltMap map = a.carmen ? BuildCarmen(a) : BuildDrive(a);
   if (auto cropped = maps::CropToObserved(map.mosaic, 4)) map.mosaic = std::move(*cropped);
@@ -455,8 +471,9 @@ int main(int argc, char** argv) {
   if (command == "build") return Build(argc - 2, argv + 2);
   if (command == "info") return Info(argc - 2, argv + 2);
   if (command == "render") return Render(argc - 2, argv + 2);
+  if (command == "register") return localization::tools::RegisterCommand(argc - 2, argv + 2);
   if (command == "--help" || command == "-h") {
-    std::cout << kUsage;
+    std::cout << kUsage << localization::tools::kNicpBuildUsage << localization::tools::kRegisterUsage;
     return 0;
   }
   Fail(1, std::string("unknown or missing command\n") + kUsage);

@@ -8,7 +8,8 @@
 // eigen-decomposition (Eq. 5.1) gives the normal (smallest eigenvector, turned towards the
 // viewpoint) and sigma = l1 / (l1 + l2 + l3). Where sigma is below the flatness cut the
 // covariance is forced to a disc (Eq. 5.2, eps) and Omega^s, Omega^n are its inverse
-// (Eq. 5.13, 5.14); elsewhere both are the identity.
+// (Eq. 5.13, 5.14), R diag(1/eps, 1, 1) R^T = I + (1/eps - 1) n n^T;
+// elsewhere both are the identity.
 #pragma once
 
 #include "maps/range3d/index_image.hpp"
@@ -51,9 +52,5 @@ class SurfaceStatistics {
 // normal undefined for a degenerate covariance.
 void AssignSurface(const Eigen::Matrix3d& covariance, const Eigen::Vector3f& towards_viewpoint,
                    const SurfaceStatisticsOptions& options, std::size_t index, SurfelCloud& cloud);
-
-// The disc-shaped information of a surface with unit normal n (Eq. 5.2 inverted, 5.14):
-// 1/eps along n, 1 across.
-Eigen::Matrix3f DiscInformation(const Eigen::Vector3f& normal, float epsilon);
 
 }  // namespace flat2d::maps::range3d

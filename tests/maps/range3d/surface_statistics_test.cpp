@@ -47,8 +47,8 @@ TEST(SurfaceStatistics, WallNormalFacesTheCameraAndIsFlat) {
   EXPECT_LT(frame.cloud.curvature[index], 1e-4F);
   // Disc information (Eq. 5.2 inverted): 1000 along the normal, 1 across.
   const Eigen::Vector3f n = frame.cloud.normals[index];
-  EXPECT_NEAR(n.dot(frame.cloud.point_information[index] * n), 1000.0F, 1.0F);
-  EXPECT_NEAR(Eigen::Vector3f::UnitX().dot(frame.cloud.point_information[index] * Eigen::Vector3f::UnitX()), 1.0F, 0.05F);
+  EXPECT_NEAR(n.dot(frame.cloud.Information(index) * n), 1000.0F, 1.0F);
+  EXPECT_NEAR(Eigen::Vector3f::UnitX().dot(frame.cloud.Information(index) * Eigen::Vector3f::UnitX()), 1.0F, 0.05F);
 }
 
 TEST(SurfaceStatistics, NoisyWallsStillGiveTheirNormals) {

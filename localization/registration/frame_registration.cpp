@@ -1,0 +1,55 @@
+#include "localization/registration/frame_registration.hpp"
+
+#include <array>
+#include <chrono>
+#include <memory>
+
+#include "localization/registration/correspondence_finder.hpp"
+#include "localization/registration/nicp.hpp"
+
+namespace flat2d::localization::registration {
+
+namespace {
+
+struct MethodEntry {
+  RegistrationMethod method;
+  std::string_view name;
+};
+constexpr std::array<MethodEntry, 2> kMethods{{{RegistrationMethod::kNicp, "nicp"},
+                                               {RegistrationMethod::kPointToPlane, "point-to-plane"}}};
+
+}  // namespace
+
+std::string_view MethodName(RegistrationMethod method) {
+  for (const MethodEntry& entry : kMethods) {
+    if (entry.method == method) return entry.name;
+  }
+  return "unknown";
+}
+
+std::optional<RegistrationMethod> ParseMethod(std::string_view name) {
+  for (const MethodEntry& entry : kMethods) {
+    if (entry.name == name) return entry.method;
+  }
+  return std::nullopt;
+}
+
+FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const maps::range3d::RangeFrame& source,
+                                 const Eigen::Isometry3d& guess, RegistrationMethod method, NicpOptions options,
+                                 CorrespondenceMode mode) {
+  options.metric = method == RegistrationMethod::kPointToPlane ? ErrorMetric::kPointToPlane : ErrorMetric::kNicp;
+  const auto start = std::chrono::steady_clock::now();
+  FrameRegistration registration;
+  registration.kdtree = mode == CorrespondenceMode::kKdTree || (mode == CorrespondenceMode::kAuto && !target.organized());
+  std::unique_ptr<CorrespondenceFinder> finder;
+  if (registration.kdtree) {
+    finder = std::make_unique<KdTreeCorrespondenceFinder>(target.cloud, options.kdtree_alpha);
+  } else {
+    finder = std::make_unique<ProjectiveCorrespondenceFinder>(target.cloud, target.projection);
+  }
+  registration.result = Nicp(options).Register(target.cloud, *finder, source.cloud, guess);
+  registration.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return registration;
+}
+
+}  // namespace flat2d::localization::registration

@@ -1,0 +1,45 @@
+// `flat2d-map build --mode nicp depth.txt`: a depth sequence tracked by NICP (thesis 5.1,
+// 5.3.1), written as a TUM trajectory and a PLY model.
+//
+// Pairwise tracking: each frame registered to the one before it (source = new frame,
+// target = previous), from the previous motion as the guess (a constant-velocity camera;
+// identity for the first pair), and the poses chained: world_T_k = world_T_{k-1} T. The
+// first frame is the world. A failed registration keeps the guess and is counted.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "hal/common/error.hpp"
+#include "localization/registration/frame_registration.hpp"
+#include "localization/registration/nicp_options.hpp"
+#include "maps/range3d/range_frame.hpp"
+
+namespace flat2d::localization::tools {
+
+struct NicpBuildOptions {
+  registration::RegistrationMethod method = registration::RegistrationMethod::kNicp;
+  registration::NicpOptions nicp;
+  maps::range3d::RangeFrameOptions frames;
+  bool constant_velocity = true;  // false: every pair starts from identity
+  int max_frames = 0;             // 0: the whole list
+  // The PLY model: the points of every model_every-th frame, every model_stride-th of them.
+  int model_every = 10;
+  int model_stride = 8;
+};
+
+struct NicpBuildSummary {
+  int frames = 0;
+  int failures = 0;
+  std::vector<double> frame_ms;         // per registered frame: its statistics + the registration
+  std::vector<double> registration_ms;  // the registration alone
+  std::vector<double> load_ms;          // reading and decoding the file
+  std::size_t model_points = 0;
+};
+
+// Writes out_dir/trajectory.tum (world_T_camera per frame, the list's stamps) and
+// out_dir/model.ply.
+Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, const NicpBuildOptions& options,
+                                            const std::filesystem::path& out_dir);
+
+}  // namespace flat2d::localization::tools

@@ -1,0 +1,182 @@
+#include "localization/tools/register_command.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "hal/trajectory/transform_file.hpp"
+#include "localization/registration/frame_registration.hpp"
+#include "maps/range3d/range_frame.hpp"
+#include "maps/tools/cli_args.hpp"
+
+namespace flat2d::localization::tools {
+
+const char* const kRegisterUsage = R"(
+register: NICP (thesis 5.1) of SOURCE onto TARGET; prints target_T_source, the 4x4 with
+p_target = T p_source (the lidar3d reference files' convention), H (the 6x6 information
+over (dt, dq)), iterations, inliers and time. Files: .png TUM depth (metres = value/5000),
+.pcd, .ply, .bin (KITTI). An organized target (depth image, Velodyne laser rows, KITTI
+elevation bins) registers by projection into its image, an unorganized one by KD-tree.
+  --init FILE           the initial guess, a 4x4 transform file (default identity)
+  --method M            nicp (default) or point-to-plane (the same with Omega^n = 0)
+  --sensor S            auto (default), pinhole, vlp16, hdl32e, vlp32c, kitti64, unorganized
+  --kdtree              KD-tree correspondences on (p, n/3) even for organized clouds
+  --alpha A             KD-tree mode: the weight of normals against positions, metres
+                        (default 1/3, Eq. 6.10; scale it with the scene)
+  --iterations N        (default 10)
+  --radius M            the surface statistics radius R (default 0.1 depth and PLY, 0.5 LiDAR)
+  --max-distance M      eps_d of Eq. 5.6 (default 0.5)
+  --image-scale N       depth images: every N-th pixel and row (default 1: all of them)
+  --columns N           LiDAR range image columns (default 2160)
+  --chi2-bound K        winsorization bound of Eq. 4.11 (default 1)
+  --damping L           lambda of Eq. 5.15 relative to H's mean diagonal (default 1e-4)
+  --normal-weight W     scales Omega^n (default 1, Eq. 5.14)
+  --intrinsics FX,FY,CX,CY  depth camera (default 525,525,319.5,239.5)
+  --viewpoint X,Y,Z     unorganized clouds: where the scanner was (default 0,0,0)
+  --json                one JSON object: target_T_source, H, iterations, inliers,
+                        correspondences, chi2, converged, failure, time_ms, ...
+)";
+
+namespace {
+
+using registration::FrameRegistration;
+constexpr std::string_view kTool = "flat2d-map";
+
+struct RegisterArgs {
+  std::string source, target;
+  std::optional<std::string> init;
+  registration::RegistrationMethod method = registration::RegistrationMethod::kNicp;
+  registration::CorrespondenceMode mode = registration::CorrespondenceMode::kAuto;
+  registration::NicpOptions nicp;
+  maps::range3d::RangeFrameOptions frames;
+  bool json = false;
+};
+
+[[noreturn]] void Fail(int status, const std::string& message) { maps::cli::Fail(kTool, status, message); }
+
+void SetRadius(RegisterArgs& a, float radius) {
+  a.frames.depth_statistics.radius_m = radius;
+  a.frames.lidar_statistics.radius_m = radius;
+  a.frames.unorganized_statistics.radius_m = radius;
+}
+
+RegisterArgs ParseArgs(int argc, char** argv) {
+  RegisterArgs a;
+  int positional = 0;
+  for (int i = 0; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
+    auto number = [&] { return maps::cli::ParseNumber(kTool, arg, value()); };
+    if (arg == "--init") a.init = value();
+    else if (arg == "--method") {
+      const auto method = registration::ParseMethod(value());
+      if (!method) Fail(1, "register: --method is nicp or point-to-plane");
+      a.method = *method;
+    } else if (arg == "--sensor") {
+      const auto sensor = maps::range3d::ParseSensorModel(value());
+      if (!sensor) Fail(1, "register: --sensor is auto, pinhole, vlp16, hdl32e, vlp32c, kitti64 or unorganized");
+      a.frames.sensor = *sensor;
+    } else if (arg == "--kdtree") a.mode = registration::CorrespondenceMode::kKdTree;
+    else if (arg == "--alpha") a.nicp.kdtree_alpha = static_cast<float>(number());
+    else if (arg == "--iterations") a.nicp.iterations = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1000));
+    else if (arg == "--radius") SetRadius(a, static_cast<float>(number()));
+    else if (arg == "--max-distance") a.nicp.max_distance_m = static_cast<float>(number());
+    else if (arg == "--chi2-bound") a.nicp.chi2_bound = number();
+    else if (arg == "--image-scale") a.frames.image_scale = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 8));
+    else if (arg == "--columns") a.frames.lidar_columns = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 16, 32768));
+    else if (arg == "--damping") a.nicp.damping = number();
+    else if (arg == "--normal-weight") a.nicp.normal_weight = number();
+    else if (arg == "--intrinsics") {
+      const auto v = maps::cli::ParseNumberList(kTool, arg, value(), 4);
+      a.frames.intrinsics = {640, 480, static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]), static_cast<float>(v[3])};
+    } else if (arg == "--viewpoint") {
+      const auto v = maps::cli::ParseNumberList(kTool, arg, value(), 3);
+      a.frames.viewpoint = Eigen::Vector3d(v[0], v[1], v[2]).cast<float>();
+    } else if (arg == "--json") a.json = true;
+    else if (!arg.starts_with("-") && positional < 2) (positional++ == 0 ? a.source : a.target) = std::string(arg);
+    else Fail(1, "register: unknown argument " + std::string(arg) + "\n" + kRegisterUsage);
+  }
+  if (positional != 2) Fail(1, std::string("register needs SOURCE and TARGET\n") + kRegisterUsage);
+  return a;
+}
+
+struct LoadedFrame {
+  maps::range3d::RangeFrame frame;
+  double seconds = 0.0;  // read + statistics
+};
+
+LoadedFrame LoadOrFail(const std::string& path, const maps::range3d::RangeFrameOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  auto frame = maps::range3d::LoadRangeFrame(path, options);
+  if (!frame.ok()) Fail(2, frame.error().message);
+  return {std::move(*frame), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+}
+
+std::string MatrixJson(const Eigen::MatrixXd& m) {
+  std::string out = "[";
+  for (Eigen::Index row = 0; row < m.rows(); ++row) {
+    out += row ? ", [" : "[";
+    for (Eigen::Index col = 0; col < m.cols(); ++col) {
+      char number[32];
+      std::snprintf(number, sizeof number, "%s%.9g", col ? ", " : "", m(row, col));
+      out += number;
+    }
+    out += "]";
+  }
+  return out + "]";
+}
+
+void PrintJson(const FrameRegistration& r, const LoadedFrame& source, const LoadedFrame& target, const RegisterArgs& a) {
+  std::printf("{\"target_T_source\": %s, \"H\": %s, \"iterations\": %d, \"inliers\": %d, \"correspondences\": %d, "
+              "\"chi2\": %.9g, \"converged\": %s, \"failure\": \"%s\", \"method\": \"%s\", \"correspondence\": \"%s\", "
+              "\"time_ms\": %.3f, \"source_load_ms\": %.3f, \"target_load_ms\": %.3f, \"source_sensor\": \"%s\", "
+              "\"target_sensor\": \"%s\", \"source_points\": %zu, \"target_points\": %zu}\n",
+              MatrixJson(r.result.target_T_source.matrix()).c_str(), MatrixJson(r.result.information).c_str(),
+              r.result.iterations, r.result.inliers, r.result.correspondences, r.result.chi2,
+              r.result.converged ? "true" : "false", registration::FailureName(r.result.failure),
+              std::string(registration::MethodName(a.method)).c_str(), r.kdtree ? "kdtree" : "projective",
+              1e3 * r.seconds, 1e3 * source.seconds, 1e3 * target.seconds,
+              std::string(maps::range3d::SensorModelName(source.frame.sensor)).c_str(),
+              std::string(maps::range3d::SensorModelName(target.frame.sensor)).c_str(), source.frame.cloud.size(),
+              target.frame.cloud.size());
+}
+
+void PrintText(const FrameRegistration& r, const LoadedFrame& source, const LoadedFrame& target) {
+  std::printf("target_T_source:\n%s", hal::trajectory::FormatTransform(r.result.target_T_source).c_str());
+  std::printf("H:\n");
+  for (int row = 0; row < 6; ++row) {
+    for (int col = 0; col < 6; ++col) std::printf("%s%.6g", col ? " " : "", r.result.information(row, col));
+    std::printf("\n");
+  }
+  std::printf("iterations: %d%s\ninliers: %d of %d correspondences (%s)\nchi2: %.6g\n", r.result.iterations,
+              r.result.converged ? " (converged)" : "", r.result.inliers, r.result.correspondences,
+              r.kdtree ? "kd-tree" : "projective", r.result.chi2);
+  std::printf("time: %.2f ms registration; %.2f / %.2f ms reading and statistics of source / target\n",
+              1e3 * r.seconds, 1e3 * source.seconds, 1e3 * target.seconds);
+  std::printf("clouds: source %zu points (%s), target %zu points (%s)\n", source.frame.cloud.size(),
+              std::string(maps::range3d::SensorModelName(source.frame.sensor)).c_str(), target.frame.cloud.size(),
+              std::string(maps::range3d::SensorModelName(target.frame.sensor)).c_str());
+  if (!r.result.ok()) std::printf("failed: %s\n", registration::FailureName(r.result.failure));
+}
+
+}  // namespace
+
+int RegisterCommand(int argc, char** argv) {
+  const RegisterArgs a = ParseArgs(argc, argv);
+  Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
+  if (a.init) {
+    auto init = hal::trajectory::ReadTransformFile(*a.init);
+    if (!init.ok()) Fail(2, init.error().message);
+    guess = *init;
+  }
+  const LoadedFrame source = LoadOrFail(a.source, a.frames);
+  const LoadedFrame target = LoadOrFail(a.target, a.frames);
+  const FrameRegistration r = registration::RegisterFrames(target.frame, source.frame, guess, a.method, a.nicp, a.mode);
+  if (a.json) PrintJson(r, source, target, a);
+  else PrintText(r, source, target);
+  return r.result.ok() ? 0 : 3;
+}
+
+}  // namespace flat2d::localization::tools

@@ -1,0 +1,71 @@
+// One range measurement made ready for registration: the file read, the sensor's
+// projection chosen, the points' surface statistics computed (thesis 5.1.1).
+//
+// Sensors: a pinhole depth camera (TUM depth PNG); spinning LiDARs whose rows are the
+// lasers of a Velodyne laser table (VLP-16, HDL-32E, VLP-32C, recognised from the points'
+// elevations when not given); KITTI's HDL-64E binned into equal elevation rows; and
+// unorganized clouds (PLY scans, anything else), whose statistics come from a KD-tree
+// and which register in KD-tree mode.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string_view>
+
+#include <Eigen/Core>
+
+#include "hal/cloud/point_cloud.hpp"
+#include "hal/common/error.hpp"
+#include "maps/range3d/projection.hpp"
+#include "maps/range3d/surface_statistics.hpp"
+#include "maps/range3d/surfel_cloud.hpp"
+
+namespace flat2d::maps::range3d {
+
+enum class SensorModel { kAuto, kPinhole, kVlp16, kHdl32e, kVlp32c, kKitti64, kUnorganized };
+
+std::string_view SensorModelName(SensorModel sensor);
+std::optional<SensorModel> ParseSensorModel(std::string_view name);
+
+struct RangeFrameOptions {
+  SensorModel sensor = SensorModel::kAuto;
+  // TUM's recipe for its depth images (fr1 depth is registered to the colour camera).
+  PinholeIntrinsics intrinsics{640, 480, 525.0F, 525.0F, 319.5F, 239.5F};
+  double depth_scale = 5000.0;   // TUM depth PNG: metres = value / 5000
+  float max_depth_m = 8.0F;      // Kinect v1 depth beyond ~8 m is noise
+  // Depth images: every image_scale-th pixel of every image_scale-th row (fx, cx scaled
+  // to match); 2 makes a 640x480 frame 320x240, a quarter of the work.
+  int image_scale = 1;
+  int lidar_columns = 2160;      // ~0.167 deg: a 10 Hz HDL-32E's firing spacing
+  // Statistics: R = 0.1 m for depth cameras (5.1.1); LiDAR rows are 1-2 deg apart, so a
+  // neighbourhood of 0.1 m holds a single ring beyond ~3 m: 0.5 m there.
+  SurfaceStatisticsOptions depth_statistics{};
+  SurfaceStatisticsOptions lidar_statistics{0.5F, 6, 32, 0.1F, 0.02F, 1e-3F};
+  // Unorganized: R in the cloud's units, and where the scanner was.
+  SurfaceStatisticsOptions unorganized_statistics{0.1F, 8, 32, 0.1F, 0.02F, 1e-3F};
+  Eigen::Vector3f viewpoint = Eigen::Vector3f::Zero();
+};
+
+struct RangeFrame {
+  SensorModel sensor = SensorModel::kUnorganized;
+  RangeProjection projection;  // rows() == 0 for unorganized clouds
+  SurfelCloud cloud;
+
+  bool organized() const { return projection.rows() > 0; }
+};
+
+// Reads a .png (TUM depth), .pcd, .ply or .bin (KITTI) file and prepares it.
+Result<RangeFrame> LoadRangeFrame(const std::filesystem::path& path, const RangeFrameOptions& options);
+
+RangeFrame FrameFromDepth(const hal::cloud::DepthImage& depth, const RangeFrameOptions& options);
+// `sensor` kAuto: a Velodyne model whose laser elevations the points match, else unorganized.
+RangeFrame FrameFromCloud(const hal::cloud::PointCloud& cloud, SensorModel sensor, const RangeFrameOptions& options);
+
+// The Velodyne model (kVlp16, kHdl32e, kVlp32c) whose laser elevations 95 % of the
+// points lie within 0.1 deg of, or kUnorganized.
+SensorModel DetectLidar(const std::vector<Eigen::Vector3f>& points);
+
+// The spherical projection of an organized LiDAR model with `columns` columns.
+RangeProjection LidarProjection(SensorModel sensor, int columns);
+
+}  // namespace flat2d::maps::range3d
