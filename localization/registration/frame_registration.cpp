@@ -38,6 +38,8 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
                                  const Eigen::Isometry3d& guess, RegistrationMethod method, NicpOptions options,
                                  CorrespondenceMode mode) {
   options.metric = method == RegistrationMethod::kPointToPlane ? ErrorMetric::kPointToPlane : ErrorMetric::kNicp;
+  const double radius_ratio = static_cast<double>(target.statistics_radius_m) / kNormalWeightRadiusM;
+  options.normal_weight *= radius_ratio * radius_ratio;
   const auto start = std::chrono::steady_clock::now();
   FrameRegistration registration;
   registration.kdtree = mode == CorrespondenceMode::kKdTree || (mode == CorrespondenceMode::kAuto && !target.organized());

@@ -21,12 +21,16 @@ std::optional<RegistrationMethod> ParseMethod(std::string_view name);
 
 enum class CorrespondenceMode { kAuto, kProjective, kKdTree };
 
+// The R that NicpOptions::normal_weight is given for.
+inline constexpr double kNormalWeightRadiusM = 0.1;
+
 struct FrameRegistration {
   RegistrationResult result;
   bool kdtree = false;   // which finder ran
   double seconds = 0.0;  // correspondences and optimisation, one thread (not the statistics)
 };
 
+// options.normal_weight is scaled by (target R / 0.1 m)^2 (nicp_options.hpp).
 FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const maps::range3d::RangeFrame& source,
                                  const Eigen::Isometry3d& guess, RegistrationMethod method, NicpOptions options,
                                  CorrespondenceMode mode = CorrespondenceMode::kAuto);

@@ -26,13 +26,14 @@ elevation bins) registers by projection into its image, an unorganized one by KD
   --alpha A             KD-tree mode: the weight of normals against positions, metres
                         (default 1/3, Eq. 6.10; scale it with the scene)
   --iterations N        (default 10)
-  --radius M            the surface statistics radius R (default 0.1 depth and PLY, 0.5 LiDAR)
+  --radius M            the surface statistics radius R (default 0.1 depth and PLY, 0.3 LiDAR)
   --max-distance M      eps_d of Eq. 5.6 (default 0.5)
   --image-scale N       depth images: every N-th pixel and row (default 1: all of them)
   --columns N           LiDAR range image columns (default 2160)
-  --chi2-bound K        winsorization bound of Eq. 4.11 (default 1)
+  --chi2-bound K        winsorization bound of Eq. 4.11 (default 10)
   --damping L           lambda of Eq. 5.15 relative to H's mean diagonal (default 1e-4)
-  --normal-weight W     scales Omega^n (default 1, Eq. 5.14)
+  --normal-weight W     scales Omega^n at R = 0.1 m, by (R/0.1)^2 at other R
+                        (default 1, Eq. 5.14)
   --intrinsics FX,FY,CX,CY  depth camera (default 525,525,319.5,239.5)
   --viewpoint X,Y,Z     unorganized clouds: where the scanner was (default 0,0,0)
   --json                one JSON object: target_T_source, H, iterations, inliers,

@@ -136,6 +136,7 @@ RangeFrame FrameFromDepth(const hal::cloud::DepthImage& depth, const RangeFrameO
   CloudFromDepth(scale == 1 ? depth : Subsampled(depth, scale), frame.projection, options.max_depth_m, frame.cloud,
                  image);
   SurfaceStatistics(options.depth_statistics).Compute(frame.projection, image, frame.cloud);
+  frame.statistics_radius_m = options.depth_statistics.radius_m;
   return frame;
 }
 
@@ -146,12 +147,14 @@ RangeFrame FrameFromCloud(const hal::cloud::PointCloud& cloud, SensorModel senso
   if (frame.sensor == SensorModel::kUnorganized || frame.sensor == SensorModel::kPinhole) {
     frame.sensor = SensorModel::kUnorganized;
     ComputeNeighbourStatistics(options.unorganized_statistics, options.viewpoint, frame.cloud);
+    frame.statistics_radius_m = options.unorganized_statistics.radius_m;
     return frame;
   }
   frame.projection = LidarProjection(frame.sensor, options.lidar_columns);
   IndexImage image;
   image.Build(frame.projection, frame.cloud.points, {}, Eigen::Isometry3f::Identity());
   SurfaceStatistics(options.lidar_statistics).Compute(frame.projection, image, frame.cloud);
+  frame.statistics_radius_m = options.lidar_statistics.radius_m;
   return frame;
 }
 

@@ -38,9 +38,10 @@ struct RangeFrameOptions {
   int image_scale = 1;
   int lidar_columns = 2160;      // ~0.167 deg: a 10 Hz HDL-32E's firing spacing
   // Statistics: R = 0.1 m for depth cameras (5.1.1); LiDAR rows are 1-2 deg apart, so a
-  // neighbourhood of 0.1 m holds a single ring beyond ~3 m: 0.5 m there.
+  // neighbourhood of 0.1 m holds a single ring beyond ~3 m: 0.3 m there (the HDL-32E
+  // pair lands 0.3 cm nearer both references with 0.3 than with 0.5 or 0.2).
   SurfaceStatisticsOptions depth_statistics{};
-  SurfaceStatisticsOptions lidar_statistics{0.5F, 6, 32, 0.1F, 0.02F, 1e-3F};
+  SurfaceStatisticsOptions lidar_statistics{0.3F, 6, 32, 0.1F, 0.02F, 1e-3F};
   // Unorganized: R in the cloud's units, and where the scanner was.
   SurfaceStatisticsOptions unorganized_statistics{0.1F, 8, 32, 0.1F, 0.02F, 1e-3F};
   Eigen::Vector3f viewpoint = Eigen::Vector3f::Zero();
@@ -50,6 +51,7 @@ struct RangeFrame {
   SensorModel sensor = SensorModel::kUnorganized;
   RangeProjection projection;  // rows() == 0 for unorganized clouds
   SurfelCloud cloud;
+  float statistics_radius_m = 0.1F;  // the R the normals were fitted over
 
   bool organized() const { return projection.rows() > 0; }
 };
