@@ -21,21 +21,26 @@ struct Correspondence {
 // The thresholds of the tests, prepared once per search.
 struct CompatibilityTest {
   explicit CompatibilityTest(const NicpOptions& options)
-      : max_distance_squared(options.max_distance_m * options.max_distance_m),
+      : surface_tests(options.metric == ErrorMetric::kNicp),
+        max_distance_squared(options.max_distance_m * options.max_distance_m),
         max_curvature_ratio(std::exp(options.max_log_curvature_ratio)),
         min_normal_dot(options.min_normal_dot) {}
+  // The point-to-plane baseline selects "based only on point distance" (5.3): no
+  // curvature or normal test.
+  bool surface_tests;
   float max_distance_squared;
   float max_curvature_ratio;  // |log a - log b| > eps_sigma  <=>  max(a, b) > e^eps_sigma min(a, b)
   float min_normal_dot;
 };
 
 // True when target point i and source point j (already moved: p, n in the target frame)
-// pass the tests: both normals defined, distance (5.6), curvature log ratio (5.7),
-// normal agreement (5.8).
+// pass the tests: both normals defined, distance (5.6), and for NICP the curvature log
+// ratio (5.7) and normal agreement (5.8).
 inline bool Compatible(const maps::range3d::SurfelCloud& target, std::size_t i, const Eigen::Vector3f& moved_point,
                        const Eigen::Vector3f& moved_normal, float source_curvature, const CompatibilityTest& test) {
   if (!target.has_normal(i) || moved_normal.squaredNorm() < 0.5F) return false;
   if ((moved_point - target.points[i]).squaredNorm() > test.max_distance_squared) return false;
+  if (!test.surface_tests) return true;
   constexpr float kMinCurvature = 1e-6F;  // a perfect plane's sigma is 0
   const float a = std::max(target.curvature[i], kMinCurvature), b = std::max(source_curvature, kMinCurvature);
   if (std::max(a, b) > test.max_curvature_ratio * std::min(a, b)) return false;

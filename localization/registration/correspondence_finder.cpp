@@ -5,9 +5,12 @@ namespace flat2d::localization::registration {
 using maps::range3d::SurfelCloud;
 
 ProjectiveCorrespondenceFinder::ProjectiveCorrespondenceFinder(const SurfelCloud& target,
-                                                               const maps::range3d::RangeProjection& projection)
-    : target_(target), projection_(projection) {
-  target_image_.Build(projection, target.points, target.normals, Eigen::Isometry3f::Identity());
+                                                               const maps::range3d::RangeProjection& projection,
+                                                               const maps::range3d::IndexImage* target_image)
+    : target_(target), projection_(projection), target_image_(target_image ? *target_image : own_target_image_) {
+  if (target_image == nullptr) {
+    own_target_image_.Build(projection, target.points, target.normals, Eigen::Isometry3f::Identity());
+  }
   source_image_.Reserve(projection.rows(), projection.cols());
 }
 

@@ -32,16 +32,20 @@ class CorrespondenceFinder {
 
 class ProjectiveCorrespondenceFinder final : public CorrespondenceFinder {
  public:
-  // `target` and `projection` must outlive the finder.
+  // `target`, `projection` and `target_image` must outlive the finder. A null
+  // `target_image` is built here from the target's points; a frame's own measurement
+  // image (its points where the sensor saw them) saves that projection.
   ProjectiveCorrespondenceFinder(const maps::range3d::SurfelCloud& target,
-                                 const maps::range3d::RangeProjection& projection);
+                                 const maps::range3d::RangeProjection& projection,
+                                 const maps::range3d::IndexImage* target_image = nullptr);
   void Find(const maps::range3d::SurfelCloud& source, const Eigen::Isometry3f& target_T_source,
             const NicpOptions& options, std::vector<Correspondence>& pairs) override;
 
  private:
   const maps::range3d::SurfelCloud& target_;
   const maps::range3d::RangeProjection& projection_;
-  maps::range3d::IndexImage target_image_;
+  maps::range3d::IndexImage own_target_image_;
+  const maps::range3d::IndexImage& target_image_;
   maps::range3d::IndexImage source_image_;
 };
 

@@ -47,7 +47,7 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
   if (registration.kdtree) {
     finder = std::make_unique<KdTreeCorrespondenceFinder>(target.cloud, options.kdtree_alpha);
   } else {
-    finder = std::make_unique<ProjectiveCorrespondenceFinder>(target.cloud, target.projection);
+    finder = std::make_unique<ProjectiveCorrespondenceFinder>(target.cloud, target.projection, &target.image);
   }
   registration.result = Nicp(options).Register(target.cloud, *finder, source.cloud, guess);
   registration.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

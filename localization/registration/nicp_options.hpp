@@ -6,7 +6,7 @@ namespace flat2d::localization::registration {
 
 enum class ErrorMetric {
   kNicp,           // 6D point + normal error, Omega = diag(Omega^s, Omega^n) (Eq. 5.13)
-  kPointToPlane,   // Omega^n = 0: the thesis' point-to-plane baseline (5.1.3)
+  kPointToPlane,   // Omega^n = 0, pairs by distance only: the thesis' point-to-plane baseline (5.1.3, 5.3)
 };
 
 struct NicpOptions {

@@ -42,6 +42,8 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
   std::vector<hal::trajectory::StampedPose> trajectory;
   std::vector<Eigen::Vector3f> model_points, model_normals;
   maps::range3d::RangeFrame previous;
+  registration::SnicpFrame previous_pyramid;
+  const registration::SnicpOptions snicp;
   Eigen::Isometry3d world_T_camera = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // previous_T_current of the last pair
   for (std::size_t k = 0; k < count; ++k) {
@@ -51,11 +53,19 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
     if (!depth.ok()) return depth.error();
     const double load_ms = MsSince(load_start);
     const Clock::time_point frame_start = Clock::now();
-    maps::range3d::RangeFrame current = maps::range3d::FrameFromDepth(*depth, options.frames);
+    registration::SnicpFrame pyramid;
+    maps::range3d::RangeFrame current;
+    if (options.snicp) {
+      pyramid = registration::MakeSnicpFrame(*depth, options.frames, snicp);
+      current = pyramid.levels.back();
+    } else {
+      current = maps::range3d::FrameFromDepth(*depth, options.frames);
+    }
     if (k > 0) {
       const Eigen::Isometry3d guess = options.constant_velocity ? motion : Eigen::Isometry3d::Identity();
       const registration::FrameRegistration r =
-          registration::RegisterFrames(previous, current, guess, options.method, options.nicp);
+          options.snicp ? registration::RegisterSnicp(previous_pyramid, pyramid, guess, options.nicp, snicp)
+                        : registration::RegisterFrames(previous, current, guess, options.method, options.nicp);
       summary.frame_ms.push_back(MsSince(frame_start));
       summary.registration_ms.push_back(1e3 * r.seconds);
       summary.load_ms.push_back(load_ms);
@@ -72,6 +82,7 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
       AddToModel(current.cloud, world_T_camera, options.model_stride, model_points, model_normals);
     }
     previous = std::move(current);
+    previous_pyramid = std::move(pyramid);
   }
   summary.frames = static_cast<int>(count);
   summary.model_points = model_points.size();

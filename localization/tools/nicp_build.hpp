@@ -13,6 +13,7 @@
 #include "hal/common/error.hpp"
 #include "localization/registration/frame_registration.hpp"
 #include "localization/registration/nicp_options.hpp"
+#include "localization/registration/snicp.hpp"
 #include "maps/range3d/range_frame.hpp"
 
 namespace flat2d::localization::tools {
@@ -21,6 +22,7 @@ struct NicpBuildOptions {
   registration::RegistrationMethod method = registration::RegistrationMethod::kNicp;
   registration::NicpOptions nicp;
   maps::range3d::RangeFrameOptions frames;
+  bool snicp = false;             // SNICP (5.2) instead of `method`
   bool constant_velocity = true;  // false: every pair starts from identity
   int max_frames = 0;             // 0: the whole list
   // The PLY model: the points of every model_every-th frame, every model_stride-th of them.

@@ -14,7 +14,8 @@ const char* const kNicpBuildUsage = R"(
 build --mode nicp LIST --out DIR: the depth frames of a TUM list (depth.txt: "time file")
 tracked frame to frame by NICP; writes DIR/trajectory.tum (world_T_camera, the first frame
 is the world, the list's stamps) and DIR/model.ply (points and normals of every 10th frame).
-  --method M            nicp (default) or point-to-plane
+  --method M            nicp (default), point-to-plane or snicp (cross-product normals,
+                        3 iterations at 1/4, 1/2 and full resolution; frame to frame, no merging)
   --identity-guess      start every pair from identity (default: the previous motion)
   --max-frames N        only the first N frames
   --image-scale N       every N-th pixel and row (default 1)
@@ -46,8 +47,10 @@ Args ParseArgs(int argc, char** argv) {
       if (std::string_view(value()) != "nicp") Fail(1, "build: --mode nicp expected here");
     } else if (arg == "--out") a.out = value();
     else if (arg == "--method") {
-      const auto method = registration::ParseMethod(value());
-      if (!method) Fail(1, "build: --method is nicp or point-to-plane");
+      const std::string_view name = value();
+      a.options.snicp = name == "snicp";
+      const auto method = a.options.snicp ? registration::RegistrationMethod::kNicp : registration::ParseMethod(name);
+      if (!method) Fail(1, "build: --method is nicp, snicp or point-to-plane");
       a.options.method = *method;
     } else if (arg == "--identity-guess") a.options.constant_velocity = false;
     else if (arg == "--max-frames") a.options.max_frames = integer(1 << 30);
@@ -79,7 +82,7 @@ int NicpBuildCommand(int argc, char** argv) {
     std::printf("{\"frames\": %d, \"failures\": %d, \"frame_ms_p50\": %.3f, \"frame_ms_p95\": %.3f, "
                 "\"registration_ms_p50\": %.3f, \"load_ms_p50\": %.3f, \"model_points\": %zu, \"method\": \"%s\"}\n",
                 s.frames, s.failures, frame.p50, frame.p95, registration_p50, load_p50, s.model_points,
-                std::string(registration::MethodName(a.options.method)).c_str());
+                a.options.snicp ? "snicp" : std::string(registration::MethodName(a.options.method)).c_str());
   } else {
     std::printf("%d frames tracked, %d failed registrations\n", s.frames, s.failures);
     std::printf("per frame: %.1f ms p50, %.1f ms p95 (statistics + registration); registration %.1f ms p50; "

@@ -6,8 +6,10 @@
 #include <string>
 #include <string_view>
 
+#include "hal/cloud/tum_depth_png.hpp"
 #include "hal/trajectory/transform_file.hpp"
 #include "localization/registration/frame_registration.hpp"
+#include "localization/registration/snicp.hpp"
 #include "maps/range3d/range_frame.hpp"
 #include "maps/tools/cli_args.hpp"
 
@@ -20,7 +22,8 @@ over (dt, dq)), iterations, inliers and time. Files: .png TUM depth (metres = va
 .pcd, .ply, .bin (KITTI). An organized target (depth image, Velodyne laser rows, KITTI
 elevation bins) registers by projection into its image, an unorganized one by KD-tree.
   --init FILE           the initial guess, a 4x4 transform file (default identity)
-  --method M            nicp (default) or point-to-plane (the same with Omega^n = 0)
+  --method M            nicp (default), point-to-plane (Omega^n = 0, pairs by distance) or
+                        snicp (depth PNGs: cross-product normals, 3 iterations at 1/4, 1/2, 1)
   --sensor S            auto (default), pinhole, vlp16, hdl32e, vlp32c, kitti64, unorganized
   --kdtree              KD-tree correspondences on (p, n/3) even for organized clouds
   --alpha A             KD-tree mode: the weight of normals against positions, metres
@@ -52,6 +55,7 @@ struct RegisterArgs {
   registration::CorrespondenceMode mode = registration::CorrespondenceMode::kAuto;
   registration::NicpOptions nicp;
   maps::range3d::RangeFrameOptions frames;
+  bool snicp = false;
   bool json = false;
 };
 
@@ -72,8 +76,10 @@ RegisterArgs ParseArgs(int argc, char** argv) {
     auto number = [&] { return maps::cli::ParseNumber(kTool, arg, value()); };
     if (arg == "--init") a.init = value();
     else if (arg == "--method") {
-      const auto method = registration::ParseMethod(value());
-      if (!method) Fail(1, "register: --method is nicp or point-to-plane");
+      const std::string_view name = value();
+      a.snicp = name == "snicp";
+      const auto method = a.snicp ? registration::RegistrationMethod::kNicp : registration::ParseMethod(name);
+      if (!method) Fail(1, "register: --method is nicp, snicp or point-to-plane");
       a.method = *method;
     } else if (arg == "--sensor") {
       const auto sensor = maps::range3d::ParseSensorModel(value());
@@ -137,7 +143,7 @@ void PrintJson(const FrameRegistration& r, const LoadedFrame& source, const Load
               MatrixJson(r.result.target_T_source.matrix()).c_str(), MatrixJson(r.result.information).c_str(),
               r.result.iterations, r.result.inliers, r.result.correspondences, r.result.chi2,
               r.result.converged ? "true" : "false", registration::FailureName(r.result.failure),
-              std::string(registration::MethodName(a.method)).c_str(), r.kdtree ? "kdtree" : "projective",
+              a.snicp ? "snicp" : std::string(registration::MethodName(a.method)).c_str(), r.kdtree ? "kdtree" : "projective",
               1e3 * r.seconds, 1e3 * source.seconds, 1e3 * target.seconds,
               std::string(maps::range3d::SensorModelName(source.frame.sensor)).c_str(),
               std::string(maps::range3d::SensorModelName(target.frame.sensor)).c_str(), source.frame.cloud.size(),
@@ -164,6 +170,23 @@ void PrintText(const FrameRegistration& r, const LoadedFrame& source, const Load
 
 }  // namespace
 
+// SNICP: both files depth PNGs, their pyramids built while timed as "load".
+FrameRegistration RegisterSnicpFiles(const RegisterArgs& a, const Eigen::Isometry3d& guess, LoadedFrame& source,
+                                     LoadedFrame& target) {
+  registration::SnicpFrame pyramids[2];
+  LoadedFrame* loaded[2] = {&source, &target};
+  const std::string* paths[2] = {&a.source, &a.target};
+  for (int k = 0; k < 2; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    auto depth = hal::cloud::ReadTumDepthPng(*paths[k], a.frames.depth_scale);
+    if (!depth.ok()) Fail(2, depth.error().message + " (snicp registers depth images)");
+    pyramids[k] = registration::MakeSnicpFrame(*depth, a.frames, registration::SnicpOptions{});
+    loaded[k]->frame = pyramids[k].levels.back();
+    loaded[k]->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return registration::RegisterSnicp(pyramids[1], pyramids[0], guess, a.nicp, registration::SnicpOptions{});
+}
+
 int RegisterCommand(int argc, char** argv) {
   const RegisterArgs a = ParseArgs(argc, argv);
   Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
@@ -172,9 +195,15 @@ int RegisterCommand(int argc, char** argv) {
     if (!init.ok()) Fail(2, init.error().message);
     guess = *init;
   }
-  const LoadedFrame source = LoadOrFail(a.source, a.frames);
-  const LoadedFrame target = LoadOrFail(a.target, a.frames);
-  const FrameRegistration r = registration::RegisterFrames(target.frame, source.frame, guess, a.method, a.nicp, a.mode);
+  LoadedFrame source, target;
+  FrameRegistration r;
+  if (a.snicp) {
+    r = RegisterSnicpFiles(a, guess, source, target);
+  } else {
+    source = LoadOrFail(a.source, a.frames);
+    target = LoadOrFail(a.target, a.frames);
+    r = registration::RegisterFrames(target.frame, source.frame, guess, a.method, a.nicp, a.mode);
+  }
   if (a.json) PrintJson(r, source, target, a);
   else PrintText(r, source, target);
   return r.result.ok() ? 0 : 3;

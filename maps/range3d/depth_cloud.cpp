@@ -7,16 +7,18 @@ void CloudFromDepth(const hal::cloud::DepthImage& depth, const RangeProjection& 
   std::size_t count = 0;
   for (const float d : depth.depth_m) count += (d > 0.0F && d <= max_depth_m) ? 1 : 0;
   cloud.Resize(count);
-  // The image's pixels are the projection's: Build() with identity re-derives each
-  // point's own pixel (u, v round-trip exactly through pi and pi^-1).
+  // The image's pixels are the projection's (u, v round-trip exactly through pi and
+  // pi^-1), so each point's pixel is set, not re-projected.
+  image.Clear(projection.rows(), projection.cols());
   std::size_t next = 0;
   for (int row = 0; row < depth.height; ++row) {
     for (int col = 0; col < depth.width; ++col) {
       const float d = depth.at(row, col);
-      if (d > 0.0F && d <= max_depth_m) cloud.points[next++] = projection.Unproject(row, col, d);
+      if (!(d > 0.0F && d <= max_depth_m)) continue;
+      image.Set(row, col, static_cast<std::int32_t>(next), d);
+      cloud.points[next++] = projection.Unproject(row, col, d);
     }
   }
-  image.Build(projection, cloud.points, {}, Eigen::Isometry3f::Identity());
 }
 
 }  // namespace flat2d::maps::range3d

@@ -13,6 +13,12 @@ void IndexImage::Reserve(int rows, int cols) {
   depth_.resize(pixels);
 }
 
+void IndexImage::Clear(int rows, int cols) {
+  Reserve(rows, cols);
+  std::fill(index_.begin(), index_.end(), -1);
+  std::fill(depth_.begin(), depth_.end(), std::numeric_limits<float>::infinity());
+}
+
 void IndexImage::Build(const RangeProjection& projection, const std::vector<Eigen::Vector3f>& points,
                        const std::vector<Eigen::Vector3f>& normals, const Eigen::Isometry3f& camera_T_points) {
   if (rows_ != projection.rows() || cols_ != projection.cols()) Reserve(projection.rows(), projection.cols());

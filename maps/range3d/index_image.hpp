@@ -26,6 +26,14 @@ class IndexImage {
   void Build(const RangeProjection& projection, const std::vector<Eigen::Vector3f>& points,
              const std::vector<Eigen::Vector3f>& normals, const Eigen::Isometry3f& camera_T_points);
 
+  // Empties every pixel (buffers kept), for filling with Set().
+  void Clear(int rows, int cols);
+  // Pixel (row, col) shows point `index` at `depth`: for images whose layout is known.
+  void Set(int row, int col, std::int32_t index, float depth) {
+    index_[Offset(row, col)] = index;
+    depth_[Offset(row, col)] = depth;
+  }
+
   int rows() const { return rows_; }
   int cols() const { return cols_; }
   std::int32_t at(int row, int col) const { return index_[Offset(row, col)]; }

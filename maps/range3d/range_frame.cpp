@@ -122,20 +122,24 @@ RangeProjection LidarProjection(SensorModel sensor, int columns) {
   return RangeProjection::Spherical({columns, RowElevations(sensor)});
 }
 
-RangeFrame FrameFromDepth(const hal::cloud::DepthImage& depth, const RangeFrameOptions& options) {
+RangeFrame UnprojectDepth(const hal::cloud::DepthImage& depth, const RangeFrameOptions& options, int scale) {
   RangeFrame frame;
   frame.sensor = SensorModel::kPinhole;
-  const int scale = std::max(options.image_scale, 1);
+  scale = std::max(scale, 1);
   const auto inverse_scale = 1.0F / static_cast<float>(scale);
   // Pixel k of the subsampled image is pixel k * scale of the original: u' = u / scale.
   const PinholeIntrinsics& full = options.intrinsics;
   const PinholeIntrinsics intrinsics{depth.width / scale, depth.height / scale, full.fx * inverse_scale,
                                      full.fy * inverse_scale, full.cx * inverse_scale, full.cy * inverse_scale};
   frame.projection = RangeProjection::Pinhole(intrinsics);
-  IndexImage image;
   CloudFromDepth(scale == 1 ? depth : Subsampled(depth, scale), frame.projection, options.max_depth_m, frame.cloud,
-                 image);
-  SurfaceStatistics(options.depth_statistics).Compute(frame.projection, image, frame.cloud);
+                 frame.image);
+  return frame;
+}
+
+RangeFrame FrameFromDepth(const hal::cloud::DepthImage& depth, const RangeFrameOptions& options) {
+  RangeFrame frame = UnprojectDepth(depth, options, options.image_scale);
+  SurfaceStatistics(options.depth_statistics).Compute(frame.projection, frame.image, frame.cloud);
   frame.statistics_radius_m = options.depth_statistics.radius_m;
   return frame;
 }
@@ -151,9 +155,8 @@ RangeFrame FrameFromCloud(const hal::cloud::PointCloud& cloud, SensorModel senso
     return frame;
   }
   frame.projection = LidarProjection(frame.sensor, options.lidar_columns);
-  IndexImage image;
-  image.Build(frame.projection, frame.cloud.points, {}, Eigen::Isometry3f::Identity());
-  SurfaceStatistics(options.lidar_statistics).Compute(frame.projection, image, frame.cloud);
+  frame.image.Build(frame.projection, frame.cloud.points, {}, Eigen::Isometry3f::Identity());
+  SurfaceStatistics(options.lidar_statistics).Compute(frame.projection, frame.image, frame.cloud);
   frame.statistics_radius_m = options.lidar_statistics.radius_m;
   return frame;
 }

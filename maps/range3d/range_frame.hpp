@@ -16,6 +16,7 @@
 
 #include "hal/cloud/point_cloud.hpp"
 #include "hal/common/error.hpp"
+#include "maps/range3d/index_image.hpp"
 #include "maps/range3d/projection.hpp"
 #include "maps/range3d/surface_statistics.hpp"
 #include "maps/range3d/surfel_cloud.hpp"
@@ -51,6 +52,7 @@ struct RangeFrame {
   SensorModel sensor = SensorModel::kUnorganized;
   RangeProjection projection;  // rows() == 0 for unorganized clouds
   SurfelCloud cloud;
+  IndexImage image;            // organized: which point each pixel of `projection` shows
   float statistics_radius_m = 0.1F;  // the R the normals were fitted over
 
   bool organized() const { return projection.rows() > 0; }
@@ -60,6 +62,9 @@ struct RangeFrame {
 Result<RangeFrame> LoadRangeFrame(const std::filesystem::path& path, const RangeFrameOptions& options);
 
 RangeFrame FrameFromDepth(const hal::cloud::DepthImage& depth, const RangeFrameOptions& options);
+// The points of every scale-th pixel and row of `depth` (intrinsics scaled to match) and
+// their index image, statistics not yet computed (SNICP's pyramid levels).
+RangeFrame UnprojectDepth(const hal::cloud::DepthImage& depth, const RangeFrameOptions& options, int scale);
 // `sensor` kAuto: a Velodyne model whose laser elevations the points match, else unorganized.
 RangeFrame FrameFromCloud(const hal::cloud::PointCloud& cloud, SensorModel sensor, const RangeFrameOptions& options);
 

@@ -1,5 +1,6 @@
 #include "localization/registration/nicp.hpp"
 #include "localization/registration/linear_system.hpp"
+#include "localization/registration/snicp.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@ namespace flat2d::localization::registration {
 namespace {
 
 using maps::range3d::IndexImage;
+using maps::range3d::PinholeIntrinsics;
 using maps::range3d::RangeProjection;
 using maps::range3d::SurfelCloud;
 
@@ -85,6 +87,33 @@ TEST_P(NicpOnDepthFrames, RecoversSeededMotionsFromIdentity) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Metrics, NicpOnDepthFrames, ::testing::Values(ErrorMetric::kNicp, ErrorMetric::kPointToPlane));
+
+TEST(Snicp, RecoversSeededMotionsThroughThePyramid) {
+  const PinholeIntrinsics intrinsics;
+  const Eigen::Isometry3f world_T_target = CameraPose();
+  std::mt19937 noise(3);
+  auto pyramid = [&](const Eigen::Isometry3f& pose) {
+    const auto depth = testing::RenderDepth(testing::OfficeRoom(), intrinsics, pose, 0.002F, noise);
+    return MakeSnicpFrame(depth, maps::range3d::RangeFrameOptions{}, SnicpOptions{});
+  };
+  const SnicpFrame target = pyramid(world_T_target);
+  ASSERT_EQ(target.levels.size(), 3U);
+  EXPECT_EQ(target.levels[0].projection.cols(), 160);
+  std::mt19937 rng(42);
+  std::printf("seed 42\n");
+  for (int trial = 0; trial < 4; ++trial) {
+    const Eigen::Isometry3f target_T_source = RandomMotion(rng, 4.0F * static_cast<float>(M_PI) / 180.0F, 0.05F);
+    const SnicpFrame source = pyramid(world_T_target * target_T_source);
+    const FrameRegistration r = RegisterSnicp(target, source, Eigen::Isometry3d::Identity(), NicpOptions{}, SnicpOptions{});
+    ASSERT_TRUE(r.result.ok()) << FailureName(r.result.failure);
+    EXPECT_LE(r.result.iterations, 9);  // 3 a level, fewer where a level converges
+    EXPECT_GE(r.result.iterations, 3);
+    const Errors e = ErrorOf(r.result.target_T_source, target_T_source.cast<double>());
+    std::printf("snicp trial %d: %.2f mm %.3f deg\n", trial, 1e3 * e.translation_m, e.rotation_deg);
+    EXPECT_LT(e.translation_m, 0.003) << "trial " << trial;
+    EXPECT_LT(e.rotation_deg, 0.1) << "trial " << trial;
+  }
+}
 
 TEST(Nicp, IdenticalFramesStayAtIdentityAndReportInformation) {
   const RangeProjection projection = RangeProjection::Pinhole({});

@@ -1,0 +1,43 @@
+#include "localization/registration/snicp.hpp"
+
+#include <chrono>
+
+#include "localization/registration/correspondence_finder.hpp"
+#include "localization/registration/nicp.hpp"
+
+namespace flat2d::localization::registration {
+
+SnicpFrame MakeSnicpFrame(const hal::cloud::DepthImage& depth, const maps::range3d::RangeFrameOptions& frames,
+                          const SnicpOptions& options) {
+  SnicpFrame frame;
+  maps::range3d::CrossProductNormals normals(options.normals);
+  for (const int scale : options.scales) {
+    maps::range3d::RangeFrame level = maps::range3d::UnprojectDepth(depth, frames, scale);
+    normals.Compute(level.image, level.cloud);
+    level.statistics_radius_m = static_cast<float>(kNormalWeightRadiusM);  // the thesis' weight, unscaled
+    frame.levels.push_back(std::move(level));
+  }
+  return frame;
+}
+
+FrameRegistration RegisterSnicp(const SnicpFrame& target, const SnicpFrame& source, const Eigen::Isometry3d& guess,
+                                NicpOptions nicp, const SnicpOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  nicp.iterations = options.iterations_per_level;
+  FrameRegistration registration;
+  registration.result.target_T_source = guess;
+  int iterations = 0;
+  for (std::size_t level = 0; level < target.levels.size() && level < source.levels.size(); ++level) {
+    const maps::range3d::RangeFrame& t = target.levels[level];
+    ProjectiveCorrespondenceFinder finder(t.cloud, t.projection, &t.image);
+    registration.result = Nicp(nicp).Register(t.cloud, finder, source.levels[level].cloud,
+                                              registration.result.target_T_source);
+    iterations += registration.result.iterations;
+    if (!registration.result.ok()) break;
+  }
+  registration.result.iterations = iterations;
+  registration.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return registration;
+}
+
+}  // namespace flat2d::localization::registration
