@@ -1,0 +1,133 @@
+// NICP's time on one core (issue 11; thesis Table 5.1: 12 ms a 640x480 pair, multi-core,
+// i7-3630QM): a TUM fr1/rpy depth pair with the new frame's statistics, at full and half
+// resolution, the statistics alone, and an HDL-32E revolution pair. Files are read once
+// outside the timed loop: a camera or a driver hands the frame over decoded.
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "hal/cloud/pcd_file.hpp"
+#include "hal/cloud/tum_depth_png.hpp"
+#include "localization/registration/frame_registration.hpp"
+#include "localization/registration/snicp.hpp"
+#include "maps/range3d/range_frame.hpp"
+#include "tests/testing/data_path.hpp"
+
+namespace {
+
+using namespace flat2d;
+using localization::registration::RegisterFrames;
+using localization::registration::RegistrationMethod;
+
+constexpr const char* kTumFolder = "depth/tum_rgbd_fr1_rpy_first200/depth/";
+
+std::optional<hal::cloud::DepthImage> LoadDepth(const std::string& name) {
+  const auto path = flat2d::testing::FindData(std::string(kTumFolder) + name);
+  if (!path) return std::nullopt;
+  auto depth = hal::cloud::ReadTumDepthPng(*path);
+  if (!depth.ok()) return std::nullopt;
+  return std::move(*depth);
+}
+
+maps::range3d::RangeFrameOptions DepthOptions(int scale) {
+  maps::range3d::RangeFrameOptions options;
+  options.image_scale = scale;
+  return options;
+}
+
+// The new frame's statistics, then its registration to the previous frame.
+void BM_NicpDepthPair(benchmark::State& state, RegistrationMethod method) {
+  const auto previous = LoadDepth("1305031229.825630.png");
+  const auto current = LoadDepth("1305031229.863062.png");
+  if (!previous || !current) {
+    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
+    return;
+  }
+  const auto options = DepthOptions(static_cast<int>(state.range(0)));
+  const maps::range3d::RangeFrame target = maps::range3d::FrameFromDepth(*previous, options);
+  int inliers = 0;
+  for (auto _ : state) {
+    const maps::range3d::RangeFrame source = maps::range3d::FrameFromDepth(*current, options);
+    const auto r = RegisterFrames(target, source, Eigen::Isometry3d::Identity(), method, {});
+    inliers = r.result.inliers;
+    benchmark::DoNotOptimize(r.result.target_T_source);
+  }
+  state.counters["inliers"] = inliers;
+}
+BENCHMARK_CAPTURE(BM_NicpDepthPair, nicp, RegistrationMethod::kNicp)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_NicpDepthPair, point_to_plane, RegistrationMethod::kPointToPlane)
+    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// SNICP (5.2): the new frame's pyramid with cross-product normals, then 3 iterations at
+// each of 1/4, 1/2 and full resolution.
+void BM_SnicpDepthPair(benchmark::State& state) {
+  const auto previous = LoadDepth("1305031229.825630.png");
+  const auto current = LoadDepth("1305031229.863062.png");
+  if (!previous || !current) {
+    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
+    return;
+  }
+  const maps::range3d::RangeFrameOptions frames;
+  const localization::registration::SnicpOptions options;
+  const auto target = localization::registration::MakeSnicpFrame(*previous, frames, options);
+  int inliers = 0;
+  for (auto _ : state) {
+    const auto source = localization::registration::MakeSnicpFrame(*current, frames, options);
+    const auto r = localization::registration::RegisterSnicp(target, source, Eigen::Isometry3d::Identity(), {}, options);
+    inliers = r.result.inliers;
+    benchmark::DoNotOptimize(r.result.target_T_source);
+  }
+  state.counters["inliers"] = inliers;
+}
+BENCHMARK(BM_SnicpDepthPair)->Unit(benchmark::kMillisecond);
+
+void BM_SnicpPyramid(benchmark::State& state) {
+  const auto depth = LoadDepth("1305031229.863062.png");
+  if (!depth) {
+    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
+    return;
+  }
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(localization::registration::MakeSnicpFrame(*depth, {}, {}).levels.size());
+  }
+}
+BENCHMARK(BM_SnicpPyramid)->Unit(benchmark::kMillisecond);
+
+void BM_DepthStatistics(benchmark::State& state) {
+  const auto depth = LoadDepth("1305031229.863062.png");
+  if (!depth) {
+    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
+    return;
+  }
+  const auto options = DepthOptions(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(maps::range3d::FrameFromDepth(*depth, options).cloud.size());
+}
+BENCHMARK(BM_DepthStatistics)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// An HDL-32E revolution (~64k points): its statistics and its registration to the last.
+void BM_NicpHdl32eRevolution(benchmark::State& state) {
+  const auto target_path = flat2d::testing::FindData("lidar3d/hdl32e_fast_gicp_pair/251370668.pcd");
+  const auto source_path = flat2d::testing::FindData("lidar3d/hdl32e_fast_gicp_pair/251371071.pcd");
+  if (!target_path || !source_path) {
+    state.SkipWithError("real data not found: lidar3d/hdl32e_fast_gicp_pair (set FLAT2D_DATA)");
+    return;
+  }
+  const auto target_cloud = hal::cloud::ReadPcd(*target_path);
+  const auto source_cloud = hal::cloud::ReadPcd(*source_path);
+  if (!target_cloud.ok() || !source_cloud.ok()) {
+    state.SkipWithError("the HDL-32E PCDs do not read");
+    return;
+  }
+  const maps::range3d::RangeFrameOptions options;
+  const auto target = maps::range3d::FrameFromCloud(*target_cloud, maps::range3d::SensorModel::kHdl32e, options);
+  for (auto _ : state) {
+    const auto source = maps::range3d::FrameFromCloud(*source_cloud, maps::range3d::SensorModel::kHdl32e, options);
+    const auto r = RegisterFrames(target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, {});
+    benchmark::DoNotOptimize(r.result.target_T_source);
+  }
+}
+BENCHMARK(BM_NicpHdl32eRevolution)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
