@@ -19,16 +19,16 @@
 #include "localization/tools/drive_map_build.hpp"
 #include "localization/tools/gnss_track.hpp"
 #include "localization/tools/nicp_build_command.hpp"
+#include "localization/tools/nicp_drive_command.hpp"
+#include "localization/tools/prior_map_output.hpp"
 #include "localization/tools/register_command.hpp"
 #include "localization/tools/shipped_config.hpp"
 #include "maps/grid/class_grid_file.hpp"
-#include "maps/grid/grid_crop.hpp"
 #include "maps/grid/structure_grid_config.hpp"
 #include "maps/prior_map/prior_map_file.hpp"
 #include "maps/prior_map/prior_map_reader.hpp"
 #include "maps/prior_map/prior_map_region.hpp"
 #include "maps/prior_map/prior_map_summary.hpp"
-#include "maps/prior_map/viewpoint.hpp"
 #include "maps/render/class_grid_image.hpp"
 #include "maps/render/png_writer.hpp"
 #include "maps/tools/cli_args.hpp"
@@ -46,6 +46,7 @@ constexpr const char* kUsage = R"(usage:
   flat2d-map info MAP [--json]
   flat2d-map render MAP --out FILE [--region XMIN,YMIN,XMAX,YMAX]
   flat2d-map build --mode nicp LIST --out DIR [options]
+  flat2d-map build --mode nicp DRIVE.pcap --out DIR [--can LOG --dbc DBC --odometry CONFIG] [options]
   flat2d-map register SOURCE TARGET [--init FILE] [--method M] [--json] [options]
 
 build: keyframes every --keyframe-distance metres or --keyframe-angle radians, each
@@ -315,34 +316,6 @@ BuiltMap BuildDrive(const BuildArgs& a) {
   return out;
 }
 
-// A viewpoint sub-map every `spacing` metres along the keyframes' path.
-std::vector<maps::ViewpointGrid> MakeViewpoints(const BuiltMap& map, double spacing, double range) {
-  std::vector<maps::ViewpointGrid> viewpoints;
-  if (spacing <= 0.0) return viewpoints;
-  double next = 0.0;
-  for (const auto& k : map.keyframes) {
-    if (k.path_m < next) continue;
-    next = k.path_m + spacing;
-    viewpoints.push_back({k.estimate.x(), k.estimate.y(), k.estimate.theta(), k.time_s,
-                          maps::VisibleFrom(map.mosaic, k.estimate.translation(), range)});
-  }
-  return viewpoints;
-}
-
-void WritePreview(const BuiltMap& map, const std::vector<maps::ViewpointGrid>& viewpoints, const std::string& path) {
-  maps::RgbImage image = maps::RenderClassGrid(map.mosaic);
-  const maps::GridGeometry& g = map.mosaic.geometry();
-  auto plot = [&](const Eigen::Vector2d& p, maps::Rgb colour, int radius) {
-    const int col = static_cast<int>(std::floor((p.x() - g.origin.x()) / g.resolution_m));
-    const int row = g.height - 1 - static_cast<int>(std::floor((p.y() - g.origin.y()) / g.resolution_m));
-    for (int dr = -radius; dr <= radius; ++dr)
-      for (int dc = -radius; dc <= radius; ++dc) image.SetClipped(col + dc, row + dr, colour);
-  };
-  for (const TimedPose& p : map.estimate) plot(p.pose.translation(), {30, 90, 230}, 0);
-  for (const auto& v : viewpoints) plot({v.x_m, v.y_m}, {20, 170, 40}, 2);
-  if (Status written = maps::WritePng(image, path); !written.ok()) Fail(2, written.error().message);
-}
-
 void WriteTrajectoryOrFail(const std::vector<TimedPose>& trajectory, const std::optional<std::string>& path) {
   if (!path) return;
   if (Status s = localization::evaluation::WriteTrajectory(trajectory, *path); !s.ok()) Fail(2, s.error().message);
@@ -359,19 +332,23 @@ bool NicpMode(int argc, char** argv) {
 }
 
 int Build(int argc, char** argv) {
-  if (NicpMode(argc, argv)) return localization::tools::NicpBuildCommand(argc, argv);
+  if (NicpMode(argc, argv)) {
+    return localization::tools::IsDriveBuild(argc, argv) ? localization::tools::NicpDriveCommand(argc, argv)
+                                                         : localization::tools::NicpBuildCommand(argc, argv);
+  }
   const BuildArgs a = ParseBuild(argc, argv);
   BuiltMap map = a.carmen ? BuildCarmen(a) : BuildDrive(a);
-  if (auto cropped = maps::CropToObserved(map.mosaic, 4)) map.mosaic = std::move(*cropped);
-  const auto viewpoints = MakeViewpoints(map, a.viewpoint_spacing_m, a.viewpoint_range_m);
-
-  maps::PriorMapWriteOptions write;
-  write.tile_cells = a.tile_cells;
-  write.georeference = a.georeference;
-  write.created_by = "flat2d-map build (flat2d " FLAT2D_VERSION ")";
-  write.source = map.source;
-  if (Status s = maps::WritePriorMap(map.mosaic, a.out, write, viewpoints); !s.ok()) Fail(2, s.error().message);
-  if (a.png) WritePreview(map, viewpoints, *a.png);
+  localization::tools::MapOutputOptions output;
+  output.write.tile_cells = a.tile_cells;
+  output.write.georeference = a.georeference;
+  output.write.created_by = "flat2d-map build (flat2d " FLAT2D_VERSION ")";
+  output.write.source = map.source;
+  output.viewpoint_spacing_m = a.viewpoint_spacing_m;
+  output.viewpoint_range_m = a.viewpoint_range_m;
+  if (a.png) output.png = *a.png;
+  const auto written_map = localization::tools::WriteBuiltMap(std::move(map.mosaic), map.keyframes, map.estimate, a.out, output);
+  if (!written_map.ok()) Fail(2, written_map.error().message);
+  const std::size_t viewpoints = written_map->viewpoints;
   WriteTrajectoryOrFail(map.estimate, a.trajectory);
   WriteTrajectoryOrFail(map.odometry, a.odometry_out);
   if (a.calibrated_odometry_out) {
@@ -396,14 +373,14 @@ int Build(int argc, char** argv) {
                 static_cast<unsigned long long>(st.loop_accepted), static_cast<unsigned long long>(st.loop_switched_off),
                 static_cast<unsigned long long>(st.loop_gated), static_cast<unsigned long long>(st.loop_drift_closed),
                 static_cast<unsigned long long>(st.optimizations), st.optimize_seconds, st.match_seconds,
-                viewpoints.size(), st.odometry_scale, map.track_scale, map.track_scale_fixes);
+                viewpoints, st.odometry_scale, map.track_scale, map.track_scale_fixes);
   } else {
     std::printf("%s: %llu scans, %llu keyframes; tracking %llu accepted, %llu rejected; loop closures %llu of %llu "
                 "candidates (%llu switched off by the robust mixture); odometry scale %.4f; %zu viewpoints\n",
                 a.out.c_str(), static_cast<unsigned long long>(st.scans), static_cast<unsigned long long>(st.keyframes),
                 static_cast<unsigned long long>(st.tracking_accepted), static_cast<unsigned long long>(st.tracking_rejected),
                 static_cast<unsigned long long>(st.loop_accepted), static_cast<unsigned long long>(st.loop_candidates),
-                static_cast<unsigned long long>(st.loop_switched_off), st.odometry_scale, viewpoints.size());
+                static_cast<unsigned long long>(st.loop_switched_off), st.odometry_scale, viewpoints);
     if (map.track_scale_fixes > 0) {
       std::printf("scale from %d GNSS fixes: %.6f (wheels %.6f)\n", map.track_scale_fixes, map.track_scale,
                   st.odometry_scale * map.track_scale);
@@ -473,7 +450,8 @@ int main(int argc, char** argv) {
   if (command == "render") return Render(argc - 2, argv + 2);
   if (command == "register") return localization::tools::RegisterCommand(argc - 2, argv + 2);
   if (command == "--help" || command == "-h") {
-    std::cout << kUsage << localization::tools::kNicpBuildUsage << localization::tools::kRegisterUsage;
+    std::cout << kUsage << localization::tools::kNicpBuildUsage << localization::tools::kNicpDriveUsage
+              << localization::tools::kRegisterUsage;
     return 0;
   }
   Fail(1, std::string("unknown or missing command\n") + kUsage);

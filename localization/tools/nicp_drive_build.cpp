@@ -1,0 +1,232 @@
+#include "localization/tools/nicp_drive_build.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "hal/net/datagram_source.hpp"
+#include "localization/tools/grid_run.hpp"
+#include "localization/tools/odometry_poses.hpp"
+#include "localization/tools/revolution_cloud.hpp"
+#include "maps/grid/interpolated_poses.hpp"
+#include "maps/grid/structure_grid_config.hpp"
+
+namespace flat2d::localization::tools {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+
+Eigen::Isometry3d Lift(const Eigen::Isometry2d& pose) {
+  Eigen::Isometry3d lifted = Eigen::Isometry3d::Identity();
+  lifted.linear().topLeftCorner<2, 2>() = pose.linear();
+  lifted.translation().head<2>() = pose.translation();
+  return lifted;
+}
+
+maps::range3d::SensorModel FrameModel(hal::velodyne::Model model) {
+  switch (model) {
+    case hal::velodyne::Model::kVlp16: return maps::range3d::SensorModel::kVlp16;
+    case hal::velodyne::Model::kHdl32e: return maps::range3d::SensorModel::kHdl32e;
+    case hal::velodyne::Model::kVlp32c: return maps::range3d::SensorModel::kVlp32c;
+  }
+  return maps::range3d::SensorModel::kAuto;
+}
+
+// The revolution-to-revolution tracker: one call per complete revolution, in time order.
+class RevolutionTracker {
+ public:
+  RevolutionTracker(const NicpDriveOptions& options, const maps::InterpolatedPoses* odometry, NicpDriveResult& result)
+      : options_(options), odometry_(odometry), result_(result),
+        vehicle_T_sensor_(maps::VehicleFromSensor(options.grid.mounting())) {}
+
+  void Add(const hal::velodyne::Revolution& revolution, hal::velodyne::Model model) {
+    const TimeNs stamp = revolution.start_ns();
+    const Clock::time_point load_start = Clock::now();
+    hal::cloud::PointCloud cloud = RevolutionCloud(revolution, Deskewing(stamp));
+    if (options_.ground_clearance_m >= 0.0) RemoveGround(cloud);
+    const double load_ms = MsSince(load_start);
+    const Clock::time_point frame_start = Clock::now();
+    maps::range3d::RangeFrame current = maps::range3d::FrameFromCloud(cloud, FrameModel(model), options_.frames);
+    if (result_.frames == 0) {
+      Start(stamp);
+    } else {
+      const Eigen::Isometry3d guess = Guess(stamp);
+      const registration::FrameRegistration r =
+          registration::RegisterFrames(previous_, current, guess, options_.method, options_.nicp);
+      result_.frame_ms.push_back(MsSince(frame_start));
+      result_.registration_ms.push_back(1e3 * r.seconds);
+      result_.load_ms.push_back(load_ms);
+      motion_ = r.result.ok() ? r.result.target_T_source : guess;
+      if (!r.result.ok()) ++result_.failures;
+      motion_ns_ = stamp - previous_ns_;
+      world_T_sensor_ = world_T_sensor_ * motion_;
+    }
+    Record(stamp, current);
+    result_.sensor = std::string(maps::range3d::SensorModelName(current.sensor));
+    previous_ = std::move(current);
+    previous_ns_ = stamp;
+  }
+
+ private:
+  // The sensor's motion from t0 to t by the odometry (none outside its time).
+  std::optional<Eigen::Isometry3d> OdometryMotion(TimeNs t0, TimeNs t) const {
+    if (odometry_ == nullptr) return std::nullopt;
+    const auto from = odometry_->PoseAt(t0), to = odometry_->PoseAt(t);
+    if (!from || !to) return std::nullopt;
+    return vehicle_T_sensor_.inverse() * Lift(from->inverse() * *to) * vehicle_T_sensor_;
+  }
+
+  // The previous motion, scaled to the time from t0 to t.
+  Eigen::Isometry3d ConstantVelocity(TimeNs t0, TimeNs t) const {
+    if (motion_ns_ <= 0) return Eigen::Isometry3d::Identity();
+    return ScaledMotion(motion_, static_cast<double>(t - t0) / static_cast<double>(motion_ns_));
+  }
+
+  Eigen::Isometry3d Guess(TimeNs stamp) {
+    if (auto odometry = OdometryMotion(previous_ns_, stamp)) return *odometry;
+    if (odometry_ != nullptr) ++result_.guesses_without_odometry;
+    return ConstantVelocity(previous_ns_, stamp);
+  }
+
+  SensorMotion Deskewing(TimeNs reference_ns) const {
+    if (!options_.deskew) return {};
+    return [this, reference_ns](TimeNs t) {
+      if (auto odometry = OdometryMotion(reference_ns, t)) return *odometry;
+      return ConstantVelocity(reference_ns, t);
+    };
+  }
+
+  // Drops the points below the clearance, taking the ground as the vehicle's plane.
+  void RemoveGround(hal::cloud::PointCloud& cloud) const {
+    const Eigen::Isometry3f vehicle_T_sensor = vehicle_T_sensor_.cast<float>();
+    const auto clearance = static_cast<float>(options_.ground_clearance_m);
+    std::erase_if(cloud.points, [&](const Eigen::Vector3f& p) { return (vehicle_T_sensor * p).z() < clearance; });
+  }
+
+  // The first revolution's pose: the anchor's, else the odometry's, else the origin.
+  void Start(TimeNs stamp) {
+    const double time_s = static_cast<double>(stamp) * 1e-9;
+    Eigen::Isometry3d world_T_vehicle = Eigen::Isometry3d::Identity();
+    Se2 anchor;
+    if (!options_.anchor.empty() && evaluation::PoseAt(options_.anchor, time_s, 1.0, anchor)) {
+      world_T_vehicle = Lift(Eigen::Isometry2d(Eigen::Translation2d(anchor.translation()) * Eigen::Rotation2Dd(anchor.theta())));
+    } else if (odometry_ != nullptr) {
+      if (auto pose = odometry_->PoseAt(stamp)) world_T_vehicle = Lift(*pose);
+    }
+    world_T_sensor_ = world_T_vehicle * vehicle_T_sensor_;
+    if (odometry_ != nullptr) {
+      if (auto pose = odometry_->PoseAt(stamp)) world_T_odometry_ = world_T_vehicle * Lift(*pose).inverse();
+    }
+  }
+
+  void Record(TimeNs stamp, const maps::range3d::RangeFrame& frame) {
+    const Eigen::Isometry3d world_T_vehicle = world_T_sensor_ * vehicle_T_sensor_.inverse();
+    result_.trajectory.push_back({stamp, world_T_vehicle});
+    if (world_T_odometry_) {
+      if (auto pose = odometry_->PoseAt(stamp)) result_.odometry.push_back({stamp, *world_T_odometry_ * Lift(*pose)});
+    }
+    if (options_.model_every > 0 && result_.frames % options_.model_every == 0) AddToModel(frame.cloud);
+    ++result_.frames;
+  }
+
+  void AddToModel(const maps::range3d::SurfelCloud& cloud) {
+    const Eigen::Isometry3f pose = world_T_sensor_.cast<float>();
+    for (std::size_t i = 0; i < cloud.size(); i += static_cast<std::size_t>(options_.model_stride)) {
+      if (!cloud.has_normal(i)) continue;
+      result_.model_points.push_back(pose * cloud.points[i]);
+      result_.model_normals.push_back(pose.linear() * cloud.normals[i]);
+    }
+  }
+
+  const NicpDriveOptions& options_;
+  const maps::InterpolatedPoses* odometry_;
+  NicpDriveResult& result_;
+  const Eigen::Isometry3d vehicle_T_sensor_;
+  Eigen::Isometry3d world_T_sensor_ = Eigen::Isometry3d::Identity();
+  std::optional<Eigen::Isometry3d> world_T_odometry_;  // places the odometry at the first pose
+  Eigen::Isometry3d motion_ = Eigen::Isometry3d::Identity();  // previous_T_current of the last pair
+  TimeNs motion_ns_ = 0;                                       // ... and the time it took
+  maps::range3d::RangeFrame previous_;
+  TimeNs previous_ns_ = 0;
+};
+
+Result<std::optional<maps::InterpolatedPoses>> OpenOdometry(const NicpDriveOptions& options) {
+  if (!options.can_log) return std::optional<maps::InterpolatedPoses>();
+  auto poses = DeadReckonedPoses(*options.dbc, *options.odometry_config, *options.can_log);
+  if (!poses.ok()) return poses.error();
+  if (poses->size() < 2) return MakeError(options.can_log->string() + ": fewer than 2 odometry poses");
+  return std::optional<maps::InterpolatedPoses>(std::move(*poses));
+}
+
+// The capture gridded at the tracked poses, every revolution voting into one mosaic.
+Result<std::optional<maps::ClassGrid>> GridAtPoses(const NicpDriveOptions& options,
+                                                   const std::vector<hal::trajectory::StampedPose>& trajectory) {
+  GridRunOptions pass;
+  pass.capture = options.capture;
+  pass.grid = options.grid;
+  pass.stream = options.stream;
+  for (const hal::trajectory::StampedPose& p : trajectory) pass.poses.push_back(maps::Flatten(p.time_ns, p.world_T_body));
+  pass.accumulate = true;
+  pass.accumulation = options.accumulation;
+  auto mosaic = RunGrid(pass);
+  if (!mosaic.ok()) return mosaic.error();
+  return std::move(mosaic->grid);
+}
+
+}  // namespace
+
+Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options) {
+  if (options.can_log.has_value() != options.dbc.has_value() || options.dbc.has_value() != options.odometry_config.has_value()) {
+    return MakeError("CAN odometry needs a CAN log, a DBC and an odometry configuration together");
+  }
+  if (Status valid = maps::ValidateStructureGridOptions(options.grid); !valid.ok()) return valid.error();
+  auto odometry = OpenOdometry(options);
+  if (!odometry.ok()) return odometry.error();
+  auto source = hal::net::OpenCapture(options.capture);
+  if (!source.ok()) return source.error();
+
+  NicpDriveResult result;
+  RevolutionTracker tracker(options, *odometry ? &**odometry : nullptr, result);
+  hal::velodyne::VelodyneStream* stream = nullptr;
+  auto on_revolution = [&](const hal::velodyne::Revolution& revolution) {
+    if (!revolution.complete || (options.max_revolutions > 0 && result.frames >= options.max_revolutions)) return;
+    tracker.Add(revolution, stream->identification()->model);
+  };
+  hal::velodyne::VelodyneStream velodyne(options.stream, on_revolution);
+  stream = &velodyne;
+  while (auto datagram = (*source)->Next()) velodyne.Push(*datagram);
+  velodyne.Finish();
+  if (velodyne.model_error()) return MakeError(options.capture.string() + ": " + velodyne.model_error()->message);
+  if (result.frames == 0) return MakeError(options.capture.string() + ": no complete Velodyne revolution");
+  if (!options.build_map) return result;
+  const Clock::time_point grid_start = Clock::now();
+  auto mosaic = GridAtPoses(options, result.trajectory);
+  if (!mosaic.ok()) return mosaic.error();
+  result.mosaic = std::move(*mosaic);
+  result.grid_seconds = MsSince(grid_start) * 1e-3;
+  return result;
+}
+
+Drift DriftAgainst(const std::vector<evaluation::TimedPose>& reference,
+                   const std::vector<hal::trajectory::StampedPose>& trajectory) {
+  constexpr double kMaxGapS = 1.0;  // between reference poses (the truth is at 200 Hz)
+  Drift drift;
+  std::optional<Eigen::Vector2d> last;
+  for (const hal::trajectory::StampedPose& p : trajectory) {
+    Se2 truth;
+    if (!evaluation::PoseAt(reference, static_cast<double>(p.time_ns) * 1e-9, kMaxGapS, truth)) continue;
+    const maps::StampedPose2d estimate = maps::Flatten(p.time_ns, p.world_T_body);
+    if (last) drift.distance_m += (truth.translation() - *last).norm();
+    last = truth.translation();
+    ++drift.poses;
+    drift.end_error_m = (estimate.position - truth.translation()).norm();
+    drift.max_error_m = std::max(drift.max_error_m, drift.end_error_m);
+    drift.end_heading_error_deg = std::abs(NormalizeAngle(estimate.yaw - truth.theta())) * 180.0 / std::numbers::pi;
+  }
+  return drift;
+}
+
+}  // namespace flat2d::localization::tools

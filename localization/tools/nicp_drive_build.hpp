@@ -1,0 +1,100 @@
+// `flat2d-map build --mode nicp DRIVE`: a Velodyne drive tracked by NICP (thesis 5.1, 5.3)
+// revolution to revolution, and the 2D prior map gridded at the poses it found.
+//
+// Steps: (1) every complete revolution of the capture (VelodyneStream) deskewed into the
+// sensor frame of its first fan (revolution_cloud.hpp) and made an organized range frame of
+// the identified model (spherical projection, surface statistics over R = 0.3 m); (2) each
+// registered to the previous revolution (frame to frame: no local model), from a guess: the
+// CAN odometry's motion between the two first fans when a CAN log is given, else the previous
+// motion (constant velocity); a failed registration keeps the guess and is counted; (3) the
+// motions chained in the sensor frame, world_T_vehicle = world_T_sensor sensor_T_vehicle, the
+// first revolution at the anchor's pose, else the odometry's, else the origin; (4) the capture
+// gridded again at those poses (grid_run.hpp's accumulation, the --pcap build's second pass)
+// into the map's mosaic.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "hal/common/error.hpp"
+#include "hal/trajectory/tum_file.hpp"
+#include "hal/velodyne/velodyne_stream.hpp"
+#include "localization/evaluation/relations.hpp"
+#include "localization/registration/frame_registration.hpp"
+#include "localization/registration/nicp_options.hpp"
+#include "maps/grid/class_grid.hpp"
+#include "maps/grid/grid_accumulator.hpp"
+#include "maps/grid/structure_grid_options.pb.h"
+#include "maps/range3d/range_frame.hpp"
+
+namespace flat2d::localization::tools {
+
+struct NicpDriveOptions {
+  std::filesystem::path capture;
+  // CAN odometry (all three or none): the registration guess and the deskewing motion.
+  std::optional<std::filesystem::path> can_log, dbc, odometry_config;
+  maps::StructureGridOptions grid;  // the sensor's mounting and the map's grids
+  hal::velodyne::VelodyneStreamOptions stream;
+  registration::RegistrationMethod method = registration::RegistrationMethod::kNicp;
+  registration::NicpOptions nicp;
+  maps::range3d::RangeFrameOptions frames;
+  bool deskew = true;       // move each fan by the motion since the revolution's first fan
+  // Points lower than this above the vehicle's ground plane stay out of the range frames
+  // (negative: none). Beyond a few metres a ground ring lies alone within R, its "surface"
+  // is a line whose normal is any direction across it, and the pairs of rings that moved
+  // with the sensor pull every motion towards standing still: on the office drive's first
+  // 8 s (HDL-32E) NICP fell 1.9 % short with the ground, 0.13 % without.
+  double ground_clearance_m = 0.2;
+  int max_revolutions = 0;  // 0: every complete revolution
+  // The first revolution's vehicle pose (a truth or GNSS track in the map frame). Empty: the
+  // odometry's pose then, or the origin without odometry.
+  std::vector<evaluation::TimedPose> anchor;
+  bool build_map = true;
+  maps::AccumulationOptions accumulation;
+  // The PLY model: the points of every model_every-th revolution, every model_stride-th of them.
+  int model_every = 10;
+  int model_stride = 16;
+};
+
+struct NicpDriveResult {
+  // world_T_vehicle at each tracked revolution's first fan.
+  std::vector<hal::trajectory::StampedPose> trajectory;
+  // The CAN odometry dead-reckoned open loop, at the same stamps from the same first pose
+  // (empty without a CAN log).
+  std::vector<hal::trajectory::StampedPose> odometry;
+  std::vector<Eigen::Vector3f> model_points, model_normals;
+  std::optional<maps::ClassGrid> mosaic;  // none when not asked for or nothing was gridded
+  std::string sensor;                     // the range frames' model ("hdl32e", ...)
+  int frames = 0;                         // revolutions tracked
+  int failures = 0;                       // registrations that failed (the guess kept)
+  int guesses_without_odometry = 0;       // pairs outside the CAN log's time (constant velocity)
+  std::vector<double> frame_ms;         // per registered revolution: its statistics + the registration
+  std::vector<double> registration_ms;  // the registration alone
+  std::vector<double> load_ms;          // the revolution's deskewed cloud
+  double grid_seconds = 0.0;            // the map's gridding pass
+};
+
+// An error names the file when the capture, the CAN log, the DBC or the odometry
+// configuration cannot be read, the capture's model is unsupported, or it holds no complete
+// revolution.
+Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options);
+
+// Open-loop drift against a reference track (truth, or the anchor) without alignment: both
+// start at the same pose, so the error at the end over the reference's distance travelled is
+// the drift per metre of a dead-reckoned estimate. In the plane.
+struct Drift {
+  int poses = 0;            // trajectory poses within the reference's time
+  double distance_m = 0.0;  // the reference's path between them
+  double end_error_m = 0.0;
+  double max_error_m = 0.0;
+  double end_heading_error_deg = 0.0;
+  double percent() const { return distance_m > 0.0 ? 100.0 * end_error_m / distance_m : 0.0; }
+};
+Drift DriftAgainst(const std::vector<evaluation::TimedPose>& reference,
+                   const std::vector<hal::trajectory::StampedPose>& trajectory);
+
+}  // namespace flat2d::localization::tools

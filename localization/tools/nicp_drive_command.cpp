@@ -1,0 +1,217 @@
+#include "localization/tools/nicp_drive_command.hpp"
+
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "hal/cloud/ply_writer.hpp"
+#include "localization/evaluation/trajectory_error.hpp"
+#include "localization/evaluation/trajectory_file.hpp"
+#include "localization/tools/nicp_drive_build.hpp"
+#include "localization/tools/prior_map_output.hpp"
+#include "localization/tools/shipped_config.hpp"
+#include "maps/grid/interpolated_poses.hpp"
+#include "maps/grid/structure_grid_config.hpp"
+#include "maps/tools/cli_args.hpp"
+
+namespace flat2d::localization::tools {
+
+const char* const kNicpDriveUsage = R"(
+build --mode nicp DRIVE --out DIR: a Velodyne capture (.pcap, .pcapng), each complete
+revolution deskewed, made an organized range frame (spherical projection of the identified
+model, statistics over R = 0.3 m) and tracked by NICP against the previous revolution (frame
+to frame). Writes DIR/trajectory.tum (world_T_vehicle at each revolution's first fan),
+DIR/model.ply (points and normals of every 10th revolution, every 16th point), DIR/map.f2m
+(the 2D prior map: the capture gridded at the tracked poses) and DIR/map.png; with a CAN log
+also DIR/odometry.tum (the CAN odometry open loop from the same first pose).
+  --can LOG --dbc DBC --odometry CONFIG
+                        CAN odometry, as for build --pcap: the guess of every pair and the
+                        motion that deskews each revolution (default: the previous motion)
+  --config FILE         StructureGridOptions: the sensor mounting and the map's grids
+                        (default: the shipped structure_grid.textproto)
+  --anchor FILE.tum     the first revolution starts at this track's pose (GNSS, the
+                        simulator's truth.tum) and the --json summary adds the drift
+                        against it (default: the odometry's pose, else the origin)
+  --method M            nicp (default) or point-to-plane
+  --iterations N        (default 10)
+  --max-frames N        only the first N complete revolutions
+  --no-deskew           take each revolution as measured from one place
+  --ground-clearance M  leave out points less than M above the vehicle's ground plane
+                        (default 0.2; negative: keep them): lone ground rings pull NICP
+                        towards standing still
+  --no-map              skip the map (the capture's second pass)
+  --json                a summary: frames, failures, frame_ms_p50/p95 (statistics + registration),
+                        registration_ms_p50, load_ms_p50 (the deskewed cloud), model_points,
+                        method, sensor, tracked_distance_m, grid_seconds, map (tiles ...), and with
+                        --anchor drift_percent, end_error_m, max_error_m (and odometry_*)
+)";
+
+namespace {
+
+constexpr std::string_view kTool = "flat2d-map";
+
+[[noreturn]] void Fail(int status, const std::string& message) { maps::cli::Fail(kTool, status, message); }
+
+bool IsCapture(std::string_view path) { return path.ends_with(".pcap") || path.ends_with(".pcapng"); }
+
+struct Args {
+  std::string out;
+  std::optional<std::string> config, anchor;
+  NicpDriveOptions options;
+  bool json = false;
+};
+
+Args ParseArgs(int argc, char** argv) {
+  Args a;
+  for (int i = 0; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
+    auto integer = [&](std::int64_t max) { return static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, max)); };
+    if (arg == "--mode") value();  // nicp: checked by the caller
+    else if (arg == "--out") a.out = value();
+    else if (arg == "--can") a.options.can_log = value();
+    else if (arg == "--dbc") a.options.dbc = value();
+    else if (arg == "--odometry") a.options.odometry_config = value();
+    else if (arg == "--config") a.config = value();
+    else if (arg == "--anchor") a.anchor = value();
+    else if (arg == "--method") {
+      const auto method = registration::ParseMethod(value());
+      if (!method) Fail(1, "build --mode nicp DRIVE: --method is nicp or point-to-plane");
+      a.options.method = *method;
+    } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
+    else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
+    else if (arg == "--no-deskew") a.options.deskew = false;
+    else if (arg == "--ground-clearance") a.options.ground_clearance_m = maps::cli::ParseNumber(kTool, arg, value());
+    else if (arg == "--no-map") a.options.build_map = false;
+    else if (arg == "--json") a.json = true;
+    else if (IsCapture(arg) && a.options.capture.empty()) a.options.capture = std::string(arg);
+    else Fail(1, "build --mode nicp DRIVE: unknown argument " + std::string(arg) + "\n" + kNicpDriveUsage);
+  }
+  if (a.options.capture.empty() || a.out.empty()) {
+    Fail(1, std::string("build --mode nicp needs DRIVE and --out DIR\n") + kNicpDriveUsage);
+  }
+  const bool can = a.options.can_log.has_value();
+  if (can != a.options.dbc.has_value() || can != a.options.odometry_config.has_value()) {
+    Fail(1, "build --mode nicp DRIVE: --can, --dbc and --odometry go together");
+  }
+  return a;
+}
+
+void Prepare(Args& a) {
+  auto grid = maps::LoadStructureGridOptions(a.config.value_or(ShippedGridConfig()));
+  if (!grid.ok()) Fail(2, grid.error().message);
+  a.options.grid = *grid;
+  if (a.anchor) {
+    auto anchor = evaluation::ReadTrajectory(*a.anchor);
+    if (!anchor.ok()) Fail(2, anchor.error().message);
+    if (anchor->empty()) Fail(2, *a.anchor + ": no pose");
+    a.options.anchor = std::move(*anchor);
+  }
+}
+
+// The tracked poses as the map writer's path: each revolution a "keyframe" with its distance.
+std::vector<mapping::Keyframe> PathOf(const std::vector<hal::trajectory::StampedPose>& trajectory,
+                                      std::vector<evaluation::TimedPose>& planar) {
+  std::vector<mapping::Keyframe> path;
+  double path_m = 0.0;
+  for (const hal::trajectory::StampedPose& p : trajectory) {
+    const maps::StampedPose2d flat = maps::Flatten(p.time_ns, p.world_T_body);
+    const Se2 pose(flat.position, flat.yaw);
+    if (!path.empty()) path_m += (pose.translation() - path.back().estimate.translation()).norm();
+    mapping::Keyframe k;
+    k.time_s = static_cast<double>(p.time_ns) * 1e-9;
+    k.estimate = pose;
+    k.path_m = path_m;
+    path.push_back(std::move(k));
+    planar.push_back({k.time_s, pose});
+  }
+  return path;
+}
+
+// Writes the files; returns the map's viewpoints.
+std::size_t WriteOutputs(const Args& a, NicpDriveResult& r) {
+  const std::filesystem::path out = a.out;
+  std::error_code error;
+  std::filesystem::create_directories(out, error);
+  if (error) Fail(2, a.out + ": cannot create (" + error.message() + ")");
+  if (Status s = hal::trajectory::WriteTum(r.trajectory, out / "trajectory.tum"); !s.ok()) Fail(2, s.error().message);
+  if (!r.odometry.empty()) {
+    if (Status s = hal::trajectory::WriteTum(r.odometry, out / "odometry.tum"); !s.ok()) Fail(2, s.error().message);
+  }
+  if (Status s = hal::cloud::WritePly(out / "model.ply", r.model_points, r.model_normals); !s.ok()) Fail(2, s.error().message);
+  if (!a.options.build_map) return 0;
+  if (!r.mosaic) Fail(3, a.options.capture.string() + ": no revolution gridded at the tracked poses: nothing to map");
+  std::vector<evaluation::TimedPose> planar;
+  const std::vector<mapping::Keyframe> path = PathOf(r.trajectory, planar);
+  MapOutputOptions output;
+  output.write.created_by = "flat2d-map build --mode nicp (flat2d " FLAT2D_VERSION ")";
+  output.write.source = "drive " + a.options.capture.string() + ", NICP revolution to revolution";
+  output.png = out / "map.png";
+  auto written = WriteBuiltMap(std::move(*r.mosaic), path, planar, out / "map.f2m", output);
+  if (!written.ok()) Fail(2, written.error().message);
+  return written->viewpoints;
+}
+
+double PathLength(const std::vector<hal::trajectory::StampedPose>& trajectory) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < trajectory.size(); ++i) {
+    length += (trajectory[i].world_T_body.translation() - trajectory[i - 1].world_T_body.translation()).norm();
+  }
+  return length;
+}
+
+void PrintDrift(const char* prefix, const Drift& d) {
+  std::printf(", \"%sdrift_percent\": %.4f, \"%send_error_m\": %.4f, \"%smax_error_m\": %.4f, "
+              "\"%send_heading_error_deg\": %.4f",
+              prefix, d.percent(), prefix, d.end_error_m, prefix, d.max_error_m, prefix, d.end_heading_error_deg);
+}
+
+}  // namespace
+
+bool IsDriveBuild(int argc, char** argv) {
+  for (int i = 0; i < argc; ++i) {
+    const bool option_value = i > 0 && std::string_view(argv[i - 1]).starts_with("--");
+    if (IsCapture(argv[i]) && !option_value) return true;
+  }
+  return false;
+}
+
+int NicpDriveCommand(int argc, char** argv) {
+  Args a = ParseArgs(argc, argv);
+  Prepare(a);
+  auto tracked = TrackDriveByNicp(a.options);
+  if (!tracked.ok()) Fail(2, tracked.error().message);
+  NicpDriveResult& r = *tracked;
+  const std::size_t viewpoints = WriteOutputs(a, r);
+  const auto frame = evaluation::PercentilesOf(r.frame_ms);
+  const double registration_p50 = evaluation::PercentilesOf(r.registration_ms).p50;
+  const double load_p50 = evaluation::PercentilesOf(r.load_ms).p50;
+  if (!a.json) {
+    std::printf("%d revolutions (%s) tracked, %d failed registrations\n", r.frames, r.sensor.c_str(), r.failures);
+    std::printf("per revolution: %.1f ms p50, %.1f ms p95 (statistics + registration); registration %.1f ms p50; "
+                "deskewed cloud %.1f ms p50; map gridded in %.1f s\n",
+                frame.p50, frame.p95, registration_p50, load_p50, r.grid_seconds);
+    std::printf("wrote %s/trajectory.tum, model.ply (%zu points)%s\n", a.out.c_str(), r.model_points.size(),
+                a.options.build_map ? ", map.f2m, map.png" : "");
+    return 0;
+  }
+  std::printf("{\"frames\": %d, \"failures\": %d, \"frame_ms_p50\": %.3f, \"frame_ms_p95\": %.3f, "
+              "\"registration_ms_p50\": %.3f, \"load_ms_p50\": %.3f, \"model_points\": %zu, \"method\": \"%s\", "
+              "\"sensor\": \"%s\", \"deskew\": %s, \"guess\": \"%s\", \"guesses_without_odometry\": %d, "
+              "\"grid_seconds\": %.3f, \"viewpoints\": %zu, \"tracked_distance_m\": %.3f",
+              r.frames, r.failures, frame.p50, frame.p95, registration_p50, load_p50, r.model_points.size(),
+              std::string(registration::MethodName(a.options.method)).c_str(), r.sensor.c_str(),
+              a.options.deskew ? "true" : "false", a.options.can_log ? "can" : "constant-velocity",
+              r.guesses_without_odometry, r.grid_seconds, viewpoints, PathLength(r.trajectory));
+  if (!a.options.anchor.empty()) {
+    const Drift nicp = DriftAgainst(a.options.anchor, r.trajectory);
+    std::printf(", \"distance_m\": %.3f", nicp.distance_m);
+    PrintDrift("", nicp);
+    if (!r.odometry.empty()) PrintDrift("odometry_", DriftAgainst(a.options.anchor, r.odometry));
+  }
+  std::printf("}\n");
+  return 0;
+}
+
+}  // namespace flat2d::localization::tools
