@@ -8,7 +8,9 @@
 
 #include "hal/cloud/pcd_file.hpp"
 #include "hal/cloud/tum_depth_png.hpp"
+#include "localization/registration/correspondence_finder.hpp"
 #include "localization/registration/frame_registration.hpp"
+#include "localization/registration/linear_system.hpp"
 #include "localization/registration/snicp.hpp"
 #include "maps/range3d/range_frame.hpp"
 #include "tests/testing/data_path.hpp"
@@ -103,6 +105,35 @@ void BM_DepthStatistics(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(maps::range3d::FrameFromDepth(*depth, options).cloud.size());
 }
 BENCHMARK(BM_DepthStatistics)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// One NICP iteration's two halves on the 640x480 pair at the identity: the projective
+// correspondence search (source index image + tests of Eq. 5.6-5.8) and the linear system.
+void BM_NicpIterationParts(benchmark::State& state) {
+  const auto previous = LoadDepth("1305031229.825630.png");
+  const auto current = LoadDepth("1305031229.863062.png");
+  if (!previous || !current) {
+    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
+    return;
+  }
+  const auto options = DepthOptions(1);
+  const maps::range3d::RangeFrame target = maps::range3d::FrameFromDepth(*previous, options);
+  const maps::range3d::RangeFrame source = maps::range3d::FrameFromDepth(*current, options);
+  localization::registration::ProjectiveCorrespondenceFinder finder(target.cloud, target.projection, &target.image);
+  const localization::registration::NicpOptions nicp;
+  const Eigen::Isometry3f identity = Eigen::Isometry3f::Identity();
+  std::vector<localization::registration::Correspondence> pairs;
+  finder.Find(source.cloud, identity, nicp, pairs);
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      finder.Find(source.cloud, identity, nicp, pairs);
+    } else {
+      benchmark::DoNotOptimize(
+          localization::registration::BuildLinearSystem(target.cloud, source.cloud, pairs, identity, nicp).H(0, 0));
+    }
+  }
+  state.counters["pairs"] = static_cast<double>(pairs.size());
+}
+BENCHMARK(BM_NicpIterationParts)->ArgName("linear_system")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // An HDL-32E revolution (~64k points): its statistics and its registration to the last.
 void BM_NicpHdl32eRevolution(benchmark::State& state) {
