@@ -46,28 +46,49 @@ struct SmallestEigen {
   Eigen::Vector3d vector;
 };
 
-std::optional<SmallestEigen> SmallestEigenOf(const Eigen::Matrix3d& c) {
-  const double trace = c.trace();
-  const double minors = c(0, 0) * c(1, 1) - c(0, 1) * c(0, 1) + c(0, 0) * c(2, 2) - c(0, 2) * c(0, 2) +
-                        c(1, 1) * c(2, 2) - c(1, 2) * c(1, 2);
-  const double det = c.determinant();
-  if (!(trace > 0.0) || !(det >= 0.0)) return std::nullopt;
+// The root-finding for l0 of one covariance, a step at a time so that a batch of pixels
+// can be stepped side by side (each step is a chain of dependent operations ending in a
+// division; independent pixels fill the pipeline between them).
+class SmallestRoot {
+ public:
+  SmallestRoot() = default;  // nothing to find
+  explicit SmallestRoot(const Eigen::Matrix3d& c)
+      : trace_(c.trace()),
+        minors_(c(0, 0) * c(1, 1) - c(0, 1) * c(0, 1) + c(0, 0) * c(2, 2) - c(0, 2) * c(0, 2) + c(1, 1) * c(2, 2) -
+                c(1, 2) * c(1, 2)),
+        det_(c.determinant()),
+        failed_(!(trace_ > 0.0) || !(det_ >= 0.0)) {}
+
+  static constexpr int kMaxSteps = 24;  // a TUM frame needs 11 at most
+  bool active() const { return !converged_ && !failed_; }
+  bool converged() const { return converged_; }
+  double value() const { return l_; }
+
   // det(C - l I) = -l^3 + trace l^2 - minors l + det; slope -3 l^2 + 2 trace l - minors.
-  const double tolerance = 1e-9 * trace;
-  constexpr int kMaxSteps = 24;  // a TUM frame needs 11 at most
-  double l = 0.0;
-  bool converged = false;
-  for (int step = 0; step < kMaxSteps && !converged; ++step) {
-    const double value = ((trace - l) * l - minors) * l + det;
-    const double slope = (2.0 * trace - 3.0 * l) * l - minors;
-    const double bend = 2.0 * trace - 6.0 * l;
+  void Step() {
+    const double value = ((trace_ - l_) * l_ - minors_) * l_ + det_;
+    const double slope = (2.0 * trace_ - 3.0 * l_) * l_ - minors_;
+    const double bend = 2.0 * trace_ - 6.0 * l_;
     const double denominator = 2.0 * slope * slope - value * bend;
-    if (!(slope < 0.0) || !(denominator > 0.0)) break;
+    if (!(slope < 0.0) || !(denominator > 0.0)) {
+      failed_ = true;
+      return;
+    }
     const double delta = -2.0 * value * slope / denominator;  // Halley's step
-    l += delta;
-    converged = std::abs(delta) <= tolerance;
+    l_ += delta;
+    converged_ = std::abs(delta) <= 1e-9 * trace_;
   }
-  if (!converged) return std::nullopt;
+
+ private:
+  double trace_ = 0.0, minors_ = 0.0, det_ = 0.0;
+  bool failed_ = true;
+  double l_ = 0.0;
+  bool converged_ = false;
+};
+
+std::optional<SmallestEigen> VectorOf(const Eigen::Matrix3d& c, const SmallestRoot& root) {
+  if (!root.converged()) return std::nullopt;
+  const double l = root.value(), trace = c.trace();
   const Eigen::Matrix3d shifted = c - l * Eigen::Matrix3d::Identity();
   const Eigen::Vector3d r0 = shifted.row(0), r1 = shifted.row(1), r2 = shifted.row(2);
   const std::array<Eigen::Vector3d, 3> candidates{r0.cross(r1), r0.cross(r2), r1.cross(r2)};
@@ -81,13 +102,14 @@ std::optional<SmallestEigen> SmallestEigenOf(const Eigen::Matrix3d& c) {
   return SmallestEigen{l, candidates[best] / std::sqrt(norm_squared)};
 }
 
-}  // namespace
-
-void AssignSurface(const Eigen::Matrix3d& covariance, const Eigen::Vector3f& towards_viewpoint,
-                   const SurfaceStatisticsOptions& options, std::size_t index, SurfelCloud& cloud) {
+// Normal, curvature and information of point `index` from its covariance and, where found,
+// its smallest eigenpair; elsewhere Eigen's closed form.
+void Assign(const Eigen::Matrix3d& covariance, const std::optional<SmallestEigen>& smallest,
+            const Eigen::Vector3f& towards_viewpoint, const SurfaceStatisticsOptions& options, std::size_t index,
+            SurfelCloud& cloud) {
   Eigen::Vector3f normal;
   float sigma = 0.0F;
-  if (const auto smallest = SmallestEigenOf(covariance)) {
+  if (smallest) {
     normal = smallest->vector.cast<float>();
     sigma = static_cast<float>(smallest->value / covariance.trace());  // l0 >= 0: the sum is the trace
   } else {
@@ -106,28 +128,62 @@ void AssignSurface(const Eigen::Matrix3d& covariance, const Eigen::Vector3f& tow
   cloud.disc_gain[index] = sigma < options.flat_curvature ? 1.0F / options.disc_epsilon - 1.0F : 0.0F;
 }
 
+}  // namespace
+
+void AssignSurface(const Eigen::Matrix3d& covariance, const Eigen::Vector3f& towards_viewpoint,
+                   const SurfaceStatisticsOptions& options, std::size_t index, SurfelCloud& cloud) {
+  SmallestRoot root(covariance);
+  for (int step = 0; step < SmallestRoot::kMaxSteps && root.active(); ++step) root.Step();
+  Assign(covariance, VectorOf(covariance, root), towards_viewpoint, options, index, cloud);
+}
+
 void SurfaceStatistics::Compute(const RangeProjection& projection, const IndexImage& image, SurfelCloud& cloud) {
   integral_.Build(image, cloud.points);
   intervals_.Build(image, options_.depth_jump_ratio);
+  batch_.clear();
+  batch_.reserve(kBatch);
   for (int row = 0; row < image.rows(); ++row) {
     for (int col = 0; col < image.cols(); ++col) {
-      if (image.at(row, col) >= 0) ComputePixel(projection, image, row, col, cloud);
+      if (image.at(row, col) < 0) continue;
+      if (const auto covariance = CovarianceAt(projection, image, row, col)) {
+        batch_.push_back({static_cast<std::size_t>(image.at(row, col)), *covariance});
+      }
+      if (batch_.size() == kBatch) AssignBatch(cloud);
     }
   }
+  AssignBatch(cloud);
 }
 
-void SurfaceStatistics::ComputePixel(const RangeProjection& projection, const IndexImage& image, int row, int col,
-                                     SurfelCloud& cloud) const {
-  const auto index = static_cast<std::size_t>(image.at(row, col));
+std::optional<Eigen::Matrix3d> SurfaceStatistics::CovarianceAt(const RangeProjection& projection,
+                                                               const IndexImage& image, int row, int col) const {
   const Eigen::Vector2f half_size =
       (options_.radius_m * projection.PixelsPerMetre(image.depth(row, col)))
           .cwiseMin(static_cast<float>(options_.max_half_size_px))
           .cwiseMax(1.0F);
   const Rectangle r = NeighbourhoodOf(half_size, intervals_.at(row, col), row, col);
   const PointMoments moments = integral_.Sum(r.row0, r.col0, r.row1, r.col1);
-  if (moments[0] < static_cast<double>(options_.min_points)) return;
+  if (moments[0] < static_cast<double>(options_.min_points)) return std::nullopt;
+  return CovarianceOf(moments);
+}
 
-  AssignSurface(CovarianceOf(moments), -cloud.points[index], options_, index, cloud);
+void SurfaceStatistics::AssignBatch(SurfelCloud& cloud) {
+  std::array<SmallestRoot, kBatch> roots{};
+  for (std::size_t k = 0; k < batch_.size(); ++k) roots[k] = SmallestRoot(batch_[k].covariance);
+  bool any = true;
+  for (int step = 0; step < SmallestRoot::kMaxSteps && any; ++step) {
+    any = false;
+    for (std::size_t k = 0; k < batch_.size(); ++k) {
+      if (!roots[k].active()) continue;
+      roots[k].Step();
+      any = true;
+    }
+  }
+  for (std::size_t k = 0; k < batch_.size(); ++k) {
+    const PixelCovariance& pixel = batch_[k];
+    Assign(pixel.covariance, VectorOf(pixel.covariance, roots[k]), -cloud.points[pixel.index], options_, pixel.index,
+           cloud);
+  }
+  batch_.clear();
 }
 
 }  // namespace flat2d::maps::range3d

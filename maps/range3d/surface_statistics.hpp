@@ -12,6 +12,12 @@
 // elsewhere both are the identity.
 #pragma once
 
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
 #include "maps/range3d/index_image.hpp"
 #include "maps/range3d/integral_image.hpp"
 #include "maps/range3d/interval_image.hpp"
@@ -39,12 +45,23 @@ class SurfaceStatistics {
   void Compute(const RangeProjection& projection, const IndexImage& image, SurfelCloud& cloud);
 
  private:
-  void ComputePixel(const RangeProjection& projection, const IndexImage& image, int row, int col,
-                    SurfelCloud& cloud) const;
+  // Pixels' covariances are gathered kBatch at a time and their eigenproblems solved side
+  // by side (surface_statistics.cpp).
+  static constexpr std::size_t kBatch = 32;
+  struct PixelCovariance {
+    std::size_t index;  // the point's
+    Eigen::Matrix3d covariance;
+  };
+
+  // Eq. 3.35 over pixel (row, col)'s rectangle; empty with fewer than min_points.
+  std::optional<Eigen::Matrix3d> CovarianceAt(const RangeProjection& projection, const IndexImage& image, int row,
+                                              int col) const;
+  void AssignBatch(SurfelCloud& cloud);
 
   const SurfaceStatisticsOptions options_;
   IntegralImage integral_;
   IntervalImage intervals_;
+  std::vector<PixelCovariance> batch_;  // at most kBatch
 };
 
 // Point `index`'s surface from the covariance of its neighbourhood: normal (turned to
