@@ -28,6 +28,50 @@ void AddToModel(const maps::range3d::SurfelCloud& cloud, const Eigen::Isometry3d
   }
 }
 
+// One frame made ready: SNICP's pyramid, or NICP's one level with eigen statistics.
+registration::SnicpFrame PrepareFrame(const hal::cloud::DepthImage& depth, const NicpBuildOptions& options,
+                                      const registration::SnicpOptions& snicp) {
+  if (options.snicp) return registration::MakeSnicpFrame(depth, options.frames, snicp);
+  registration::SnicpFrame frame;
+  frame.levels.push_back(maps::range3d::FrameFromDepth(depth, options.frames));
+  return frame;
+}
+
+registration::ModelTrackerOptions TrackerOptions(const NicpBuildOptions& options, const registration::SnicpOptions& snicp) {
+  registration::ModelTrackerOptions tracker;
+  tracker.nicp = options.nicp;
+  tracker.nicp.metric = options.method == registration::RegistrationMethod::kPointToPlane
+                            ? registration::ErrorMetric::kPointToPlane
+                            : registration::ErrorMetric::kNicp;
+  tracker.model = options.model;
+  if (options.snicp) {
+    tracker.scales = snicp.scales;
+    tracker.iterations_per_level = snicp.iterations_per_level;
+  } else {
+    tracker.scales = {1};
+    tracker.iterations_per_level = options.nicp.iterations;
+  }
+  return tracker;
+}
+
+// Registers `frame` to the one before it, from `guess`: previous_T_current.
+registration::FrameRegistration RegisterToPrevious(const registration::SnicpFrame& previous,
+                                                   const registration::SnicpFrame& frame,
+                                                   const Eigen::Isometry3d& guess, const NicpBuildOptions& options,
+                                                   const registration::SnicpOptions& snicp) {
+  if (options.snicp) return registration::RegisterSnicp(previous, frame, guess, options.nicp, snicp);
+  return registration::RegisterFrames(previous.levels.back(), frame.levels.back(), guess, options.method, options.nicp);
+}
+
+Status WriteOutputs(const std::filesystem::path& out_dir, const std::vector<hal::trajectory::StampedPose>& trajectory,
+                    const std::vector<Eigen::Vector3f>& model_points, const std::vector<Eigen::Vector3f>& model_normals) {
+  std::error_code error;
+  std::filesystem::create_directories(out_dir, error);
+  if (error) return MakeError(out_dir.string() + ": cannot create (" + error.message() + ")");
+  if (Status s = hal::trajectory::WriteTum(trajectory, out_dir / "trajectory.tum"); !s.ok()) return s;
+  return hal::cloud::WritePly(out_dir / "model.ply", model_points, model_normals);
+}
+
 }  // namespace
 
 Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, const NicpBuildOptions& options,
@@ -41,9 +85,9 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
   NicpBuildSummary summary;
   std::vector<hal::trajectory::StampedPose> trajectory;
   std::vector<Eigen::Vector3f> model_points, model_normals;
-  maps::range3d::RangeFrame previous;
-  registration::SnicpFrame previous_pyramid;
   const registration::SnicpOptions snicp;
+  registration::ModelTracker tracker(options.frames.intrinsics, TrackerOptions(options, snicp));
+  registration::SnicpFrame previous;
   Eigen::Isometry3d world_T_camera = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // previous_T_current of the last pair
   for (std::size_t k = 0; k < count; ++k) {
@@ -53,44 +97,42 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
     if (!depth.ok()) return depth.error();
     const double load_ms = MsSince(load_start);
     const Clock::time_point frame_start = Clock::now();
-    registration::SnicpFrame pyramid;
-    maps::range3d::RangeFrame current;
-    if (options.snicp) {
-      pyramid = registration::MakeSnicpFrame(*depth, options.frames, snicp);
-      current = pyramid.levels.back();
-    } else {
-      current = maps::range3d::FrameFromDepth(*depth, options.frames);
+    registration::SnicpFrame frame = PrepareFrame(*depth, options, snicp);
+    const Eigen::Isometry3d guess = k > 0 && options.constant_velocity ? motion : Eigen::Isometry3d::Identity();
+    bool ok = true;
+    double registration_ms = 0.0;
+    if (options.frame_to_model) {
+      const registration::TrackedFrame tracked = tracker.Track(frame, world_T_camera * guess);
+      ok = tracked.merged;
+      registration_ms = tracked.register_ms;
+      if (k > 0) summary.merge_ms.push_back(tracked.render_ms + tracked.merge_ms);
+      motion = world_T_camera.inverse() * tracked.model_T_camera;
+    } else if (k > 0) {
+      const registration::FrameRegistration r = RegisterToPrevious(previous, frame, guess, options, snicp);
+      ok = r.result.ok();
+      registration_ms = 1e3 * r.seconds;
+      motion = ok ? r.result.target_T_source : guess;
     }
     if (k > 0) {
-      const Eigen::Isometry3d guess = options.constant_velocity ? motion : Eigen::Isometry3d::Identity();
-      const registration::FrameRegistration r =
-          options.snicp ? registration::RegisterSnicp(previous_pyramid, pyramid, guess, options.nicp, snicp)
-                        : registration::RegisterFrames(previous, current, guess, options.method, options.nicp);
       summary.frame_ms.push_back(MsSince(frame_start));
-      summary.registration_ms.push_back(1e3 * r.seconds);
+      summary.registration_ms.push_back(registration_ms);
       summary.load_ms.push_back(load_ms);
-      if (r.result.ok()) {
-        motion = r.result.target_T_source;
-      } else {
-        ++summary.failures;
-        motion = guess;
-      }
+      summary.failures += ok ? 0 : 1;
       world_T_camera = world_T_camera * motion;
     }
     trajectory.push_back(PoseAt(entry.time_s, world_T_camera));
-    if (options.model_every > 0 && k % static_cast<std::size_t>(options.model_every) == 0) {
-      AddToModel(current.cloud, world_T_camera, options.model_stride, model_points, model_normals);
+    if (!options.frame_to_model && options.model_every > 0 && k % static_cast<std::size_t>(options.model_every) == 0) {
+      AddToModel(frame.levels.back().cloud, world_T_camera, options.model_stride, model_points, model_normals);
     }
-    previous = std::move(current);
-    previous_pyramid = std::move(pyramid);
+    previous = std::move(frame);
+  }
+  if (options.frame_to_model) {
+    model_points = tracker.model().cloud().points;
+    model_normals = tracker.model().cloud().normals;
   }
   summary.frames = static_cast<int>(count);
   summary.model_points = model_points.size();
-  std::error_code error;
-  std::filesystem::create_directories(out_dir, error);
-  if (error) return MakeError(out_dir.string() + ": cannot create (" + error.message() + ")");
-  if (Status s = hal::trajectory::WriteTum(trajectory, out_dir / "trajectory.tum"); !s.ok()) return s.error();
-  if (Status s = hal::cloud::WritePly(out_dir / "model.ply", model_points, model_normals); !s.ok()) return s.error();
+  if (Status s = WriteOutputs(out_dir, trajectory, model_points, model_normals); !s.ok()) return s.error();
   return summary;
 }
 

@@ -1,10 +1,12 @@
-// `flat2d-map build --mode nicp depth.txt`: a depth sequence tracked by NICP (thesis 5.1,
-// 5.3.1), written as a TUM trajectory and a PLY model.
+// `flat2d-map build --mode nicp depth.txt`: a depth sequence tracked by NICP or SNICP
+// (thesis 5.1-5.3), written as a TUM trajectory and a PLY model. The first frame is the
+// world; each frame's guess is the previous motion (a constant-velocity camera).
 //
-// Pairwise tracking: each frame registered to the one before it (source = new frame,
-// target = previous), from the previous motion as the guess (a constant-velocity camera;
-// identity for the first pair), and the poses chained: world_T_k = world_T_{k-1} T. The
-// first frame is the world. A failed registration keeps the guess and is counted.
+// Frame to model (the default, 5.1.4): each frame registered against the merged model
+// rendered from the predicted pose, then merged into it (registration/model_tracker.hpp);
+// the PLY is the merged model. Frame to frame: each frame registered to the one before it
+// and the poses chained, world_T_k = world_T_{k-1} T; the PLY samples every 10th frame.
+// Either way a failed registration keeps the guess and is counted.
 #pragma once
 
 #include <filesystem>
@@ -12,6 +14,7 @@
 
 #include "hal/common/error.hpp"
 #include "localization/registration/frame_registration.hpp"
+#include "localization/registration/model_tracker.hpp"
 #include "localization/registration/nicp_options.hpp"
 #include "localization/registration/snicp.hpp"
 #include "maps/range3d/range_frame.hpp"
@@ -24,8 +27,11 @@ struct NicpBuildOptions {
   maps::range3d::RangeFrameOptions frames;
   bool snicp = false;             // SNICP (5.2) instead of `method`
   bool constant_velocity = true;  // false: every pair starts from identity
+  bool frame_to_model = true;     // false: frame to frame
+  maps::range3d::SurfelModelOptions model;
   int max_frames = 0;             // 0: the whole list
-  // The PLY model: the points of every model_every-th frame, every model_stride-th of them.
+  // Frame to frame, the PLY model: the points of every model_every-th frame, every
+  // model_stride-th of them.
   int model_every = 10;
   int model_stride = 8;
 };
@@ -36,6 +42,7 @@ struct NicpBuildSummary {
   std::vector<double> frame_ms;         // per registered frame: its statistics + the registration
   std::vector<double> registration_ms;  // the registration alone
   std::vector<double> load_ms;          // reading and decoding the file
+  std::vector<double> merge_ms;         // frame to model: rendering the reference + merging
   std::size_t model_points = 0;
 };
 

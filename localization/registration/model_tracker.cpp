@@ -1,0 +1,105 @@
+#include "localization/registration/model_tracker.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "localization/registration/correspondence_finder.hpp"
+#include "localization/registration/nicp.hpp"
+
+namespace flat2d::localization::registration {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using maps::range3d::PinholeIntrinsics;
+using maps::range3d::RangeProjection;
+
+double MsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+
+// The camera's intrinsics with `margin` of extra image on each side, rounded to whole
+// pixels of the coarsest level so every level keeps the same principal point.
+PinholeIntrinsics Widened(const PinholeIntrinsics& camera, float margin, int coarsest) {
+  auto padding = [&](int size) {
+    const int pixels = static_cast<int>(std::lround(margin * static_cast<float>(size)));
+    return (pixels + coarsest - 1) / coarsest * coarsest;
+  };
+  const int pad_cols = padding(camera.cols), pad_rows = padding(camera.rows);
+  return {camera.cols + 2 * pad_cols, camera.rows + 2 * pad_rows, camera.fx, camera.fy,
+          camera.cx + static_cast<float>(pad_cols), camera.cy + static_cast<float>(pad_rows)};
+}
+
+// A level's pixel (row, col) is pixel (row s, col s) of the full view (as UnprojectDepth).
+PinholeIntrinsics Scaled(const PinholeIntrinsics& full, int scale) {
+  const float inverse = 1.0F / static_cast<float>(scale);
+  return {full.cols / scale, full.rows / scale, full.fx * inverse, full.fy * inverse, full.cx * inverse,
+          full.cy * inverse};
+}
+
+}  // namespace
+
+ModelTracker::ModelTracker(const PinholeIntrinsics& intrinsics, const ModelTrackerOptions& options)
+    : options_(options), model_(options.model) {
+  int coarsest = 1;
+  for (const int scale : options.scales) coarsest = std::max(coarsest, scale);
+  const PinholeIntrinsics wide = Widened(intrinsics, options.margin, coarsest);
+  full_view_ = RangeProjection::Pinhole(wide);
+  view_image_.Reserve(wide.rows, wide.cols);
+  for (const int scale : options.scales) {
+    level_views_.push_back(RangeProjection::Pinhole(Scaled(wide, scale)));
+    level_images_.emplace_back().Reserve(level_views_.back().rows(), level_views_.back().cols());
+  }
+}
+
+TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3d& model_T_predicted) {
+  TrackedFrame tracked;
+  tracked.model_T_camera = model_T_predicted;
+  if (model_.size() > 0) {
+    Clock::time_point start = Clock::now();
+    RenderReference(model_T_predicted.cast<float>());
+    tracked.render_ms = MsSince(start);
+    start = Clock::now();
+    tracked.result = RegisterLevels(frame);
+    tracked.register_ms = MsSince(start);
+    if (!tracked.result.ok()) return tracked;
+    tracked.model_T_camera = model_T_predicted * tracked.result.target_T_source;
+  }
+  const Clock::time_point start = Clock::now();
+  const maps::range3d::RangeFrame& full = frame.levels.back();
+  tracked.merge = model_.Merge(full.cloud, full.image, full.projection, tracked.model_T_camera.cast<float>());
+  tracked.merged = true;
+  tracked.merge_ms = MsSince(start);
+  return tracked;
+}
+
+void ModelTracker::RenderReference(const Eigen::Isometry3f& model_T_predicted) {
+  model_.Render(full_view_, model_T_predicted, view_, view_image_);
+  for (std::size_t level = 0; level < options_.scales.size(); ++level) {
+    const int scale = options_.scales[level];
+    maps::range3d::IndexImage& image = level_images_[level];
+    image.Clear(image.rows(), image.cols());
+    for (int row = 0; row < image.rows(); ++row) {
+      for (int col = 0; col < image.cols(); ++col) {
+        const int full_row = row * scale, full_col = col * scale;
+        const std::int32_t index = view_image_.at(full_row, full_col);
+        if (index >= 0) image.Set(row, col, index, view_image_.depth(full_row, full_col));
+      }
+    }
+  }
+}
+
+RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame) {
+  NicpOptions nicp = options_.nicp;
+  nicp.iterations = options_.iterations_per_level;
+  RegistrationResult result;
+  int iterations = 0;
+  for (std::size_t level = 0; level < level_views_.size() && level < frame.levels.size(); ++level) {
+    ProjectiveCorrespondenceFinder finder(view_, level_views_[level], &level_images_[level]);
+    result = Nicp(nicp).Register(view_, finder, frame.levels[level].cloud, result.target_T_source);
+    iterations += result.iterations;
+    if (!result.ok()) break;
+  }
+  result.iterations = iterations;
+  return result;
+}
+
+}  // namespace flat2d::localization::registration

@@ -1,0 +1,69 @@
+// Frame-to-model tracking of depth frames (thesis 5.1.4, 5.2.2-5.2.3): each new frame is
+// registered against the merged model rather than the frame before it, then merged in.
+//
+//   1. The model is rendered from the predicted camera pose through a projection wider
+//      than the camera's (5.2.2), so that the frame stays inside the reference view while
+//      the optimization moves it; coarser levels take every s-th pixel of that view.
+//   2. The frame is registered to the rendered view in the inverse form of Eq. 5.20: the
+//      reference projection is fixed and the frame moves, level by level (NICP: one level,
+//      10 iterations; SNICP: 1/4, 1/2, full, 3 iterations each, 5.3).
+//   3. On success the frame's full-resolution cloud is merged at the estimated pose
+//      (maps/range3d/surfel_model.hpp); a failed registration keeps the prediction and
+//      leaves the model untouched, so one bad frame cannot corrupt it.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "localization/registration/nicp_options.hpp"
+#include "localization/registration/registration_result.hpp"
+#include "localization/registration/snicp.hpp"
+#include "maps/range3d/surfel_model.hpp"
+
+namespace flat2d::localization::registration {
+
+struct ModelTrackerOptions {
+  NicpOptions nicp;                  // its iterations are replaced by iterations_per_level
+  std::vector<int> scales{4, 2, 1};  // the frame's levels, coarse to fine; the last is 1
+  int iterations_per_level = 3;
+  // The reference view's extra width and height on each side, as a share of the image's.
+  float margin = 0.125F;
+  maps::range3d::SurfelModelOptions model;
+};
+
+struct TrackedFrame {
+  RegistrationResult result;  // predicted_T_camera; iterations summed over the levels
+  Eigen::Isometry3d model_T_camera = Eigen::Isometry3d::Identity();
+  bool merged = false;
+  maps::range3d::MergeStats merge;
+  double render_ms = 0.0;
+  double register_ms = 0.0;
+  double merge_ms = 0.0;
+};
+
+class ModelTracker {
+ public:
+  // `intrinsics`: the camera's full-resolution image.
+  ModelTracker(const maps::range3d::PinholeIntrinsics& intrinsics, const ModelTrackerOptions& options);
+
+  // `frame.levels` matches options.scales (MakeSnicpFrame, or one FrameFromDepth level).
+  // The first frame only seeds the model, at model_T_predicted.
+  TrackedFrame Track(const SnicpFrame& frame, const Eigen::Isometry3d& model_T_predicted);
+
+  const maps::range3d::SurfelModel& model() const { return model_; }
+
+ private:
+  void RenderReference(const Eigen::Isometry3f& model_T_predicted);
+  RegistrationResult RegisterLevels(const SnicpFrame& frame);
+
+  const ModelTrackerOptions options_;
+  maps::range3d::SurfelModel model_;
+  maps::range3d::RangeProjection full_view_;                  // the widened full-resolution view
+  std::vector<maps::range3d::RangeProjection> level_views_;  // ... at each scale
+  std::vector<maps::range3d::IndexImage> level_images_;
+  maps::range3d::SurfelCloud view_;  // the rendered model, camera frame
+  maps::range3d::IndexImage view_image_;
+};
+
+}  // namespace flat2d::localization::registration

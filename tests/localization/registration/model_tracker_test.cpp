@@ -1,0 +1,111 @@
+#include "localization/registration/model_tracker.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "tests/testing/box_scene.hpp"
+
+namespace flat2d::localization::registration {
+namespace {
+
+using maps::range3d::PinholeIntrinsics;
+
+// A camera in the office room turning and sliding past the furniture: frame k's pose.
+Eigen::Isometry3f CameraAt(int k) {
+  Eigen::Matrix3f world_R_optical;
+  world_R_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const float t = static_cast<float>(k);
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
+  pose.linear() = Eigen::AngleAxisf(0.02F * t, Eigen::Vector3f::UnitZ()).toRotationMatrix() * world_R_optical *
+                  Eigen::AngleAxisf(0.3F, Eigen::Vector3f::UnitY()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3f(-1.5F + 0.02F * t, 0.3F - 0.01F * t, 1.4F);
+  return pose;
+}
+
+struct Errors {
+  double translation_m;
+  double rotation_deg;
+};
+
+Errors ErrorOf(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth) {
+  const Eigen::Isometry3d error = truth.inverse() * estimate;
+  return {error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI};
+}
+
+SnicpFrame FrameAt(int k, std::mt19937& noise) {
+  const auto depth = testing::RenderDepth(testing::OfficeRoom(), PinholeIntrinsics{}, CameraAt(k), 0.002F, noise);
+  return MakeSnicpFrame(depth, maps::range3d::RangeFrameOptions{}, SnicpOptions{});
+}
+
+TEST(ModelTracker, TracksADriftFreeCameraThroughTheMergedModel) {
+  ModelTracker tracker(PinholeIntrinsics{}, ModelTrackerOptions{});
+  std::mt19937 noise(7);
+  std::printf("noise seed 7\n");
+  const Eigen::Isometry3d world_T_first = CameraAt(0).cast<double>();
+  Eigen::Isometry3d model_T_camera = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  std::size_t first_frame_points = 0;
+  constexpr int kFrames = 12;
+  for (int k = 0; k < kFrames; ++k) {
+    const SnicpFrame frame = FrameAt(k, noise);
+    const TrackedFrame tracked = tracker.Track(frame, model_T_camera * motion);
+    ASSERT_TRUE(tracked.merged) << "frame " << k << ": " << FailureName(tracked.result.failure);
+    motion = model_T_camera.inverse() * tracked.model_T_camera;
+    model_T_camera = tracked.model_T_camera;
+    if (k == 0) first_frame_points = tracker.model().size();
+    const Errors e = ErrorOf(model_T_camera, world_T_first.inverse() * CameraAt(k).cast<double>());
+    std::printf("frame %d: %.2f mm %.3f deg, model %zu points (%zu merged, %zu replaced)\n", k, 1e3 * e.translation_m,
+                e.rotation_deg, tracker.model().size(), tracked.merge.merged, tracked.merge.replaced);
+    EXPECT_LT(e.translation_m, 0.001) << "frame " << k;
+    EXPECT_LT(e.rotation_deg, 0.02) << "frame " << k;
+  }
+  // The camera turned 12.6 deg and moved 25 cm: merging keeps about a point per pixel of
+  // what was seen, not a frame's worth of points per frame.
+  EXPECT_LT(tracker.model().size(), 2 * first_frame_points);
+}
+
+TEST(ModelTracker, AFailedRegistrationLeavesTheModelUntouched) {
+  ModelTracker tracker(PinholeIntrinsics{}, ModelTrackerOptions{});
+  std::mt19937 noise(7);
+  (void)tracker.Track(FrameAt(0, noise), Eigen::Isometry3d::Identity());
+  const std::size_t before = tracker.model().size();
+  hal::cloud::DepthImage blank;
+  blank.width = 640;
+  blank.height = 480;
+  blank.depth_m.assign(640U * 480U, 0.0F);  // nothing measured
+  const SnicpFrame nothing = MakeSnicpFrame(blank, maps::range3d::RangeFrameOptions{}, SnicpOptions{});
+  const Eigen::Isometry3d predicted = Eigen::Isometry3d(Eigen::Translation3d(0.1, 0.0, 0.0));
+  const TrackedFrame tracked = tracker.Track(nothing, predicted);
+  EXPECT_FALSE(tracked.result.ok());
+  EXPECT_FALSE(tracked.merged);
+  EXPECT_TRUE(tracked.model_T_camera.isApprox(predicted));
+  EXPECT_EQ(tracker.model().size(), before);
+}
+
+TEST(ModelTracker, NicpWithOneLevelTracksToo) {
+  ModelTrackerOptions options;
+  options.scales = {1};
+  options.iterations_per_level = 10;
+  ModelTracker tracker(PinholeIntrinsics{}, options);
+  std::mt19937 noise(11);
+  maps::range3d::RangeFrameOptions frames;
+  Eigen::Isometry3d model_T_camera = Eigen::Isometry3d::Identity();
+  for (int k = 0; k < 4; ++k) {
+    const auto depth = testing::RenderDepth(testing::OfficeRoom(), PinholeIntrinsics{}, CameraAt(3 * k), 0.002F, noise);
+    SnicpFrame frame;
+    frame.levels.push_back(maps::range3d::FrameFromDepth(depth, frames));
+    const TrackedFrame tracked = tracker.Track(frame, model_T_camera);
+    ASSERT_TRUE(tracked.merged) << "frame " << k;
+    model_T_camera = tracked.model_T_camera;
+  }
+  const Errors e = ErrorOf(model_T_camera, CameraAt(0).cast<double>().inverse() * CameraAt(9).cast<double>());
+  std::printf("nicp after 3 steps of 6 cm / 3.4 deg: %.2f mm %.3f deg\n", 1e3 * e.translation_m, e.rotation_deg);
+  EXPECT_LT(e.translation_m, 0.001);
+  EXPECT_LT(e.rotation_deg, 0.02);
+}
+
+}  // namespace
+}  // namespace flat2d::localization::registration
