@@ -99,11 +99,15 @@ class RevolutionTracker {
     };
   }
 
-  // Drops the points below the clearance, taking the ground as the vehicle's plane.
+  // Drops the points below the clearance beyond the ground range, taking the ground as the
+  // vehicle's plane.
   void RemoveGround(hal::cloud::PointCloud& cloud) const {
     const Eigen::Isometry3f vehicle_T_sensor = vehicle_T_sensor_.cast<float>();
     const auto clearance = static_cast<float>(options_.ground_clearance_m);
-    std::erase_if(cloud.points, [&](const Eigen::Vector3f& p) { return (vehicle_T_sensor * p).z() < clearance; });
+    const auto range_squared = static_cast<float>(options_.ground_range_m * options_.ground_range_m);
+    std::erase_if(cloud.points, [&](const Eigen::Vector3f& p) {
+      return (vehicle_T_sensor * p).z() < clearance && p.head<2>().squaredNorm() > range_squared;
+    });
   }
 
   // The first revolution's pose: the anchor's, else the odometry's, else the origin.

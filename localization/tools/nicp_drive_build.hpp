@@ -49,6 +49,10 @@ struct NicpDriveOptions {
   // with the sensor pull every motion towards standing still: on the office drive's first
   // 8 s (HDL-32E) NICP fell 1.9 % short with the ground, 0.13 % without.
   double ground_clearance_m = 0.2;
+  // ... except within this horizontal range of the sensor, where rings lie closer than R
+  // and the ground is a plane that holds height, roll and pitch (an HDL-32E at 1.9 m: rings
+  // r^2 / 1.9 m x 1.33 deg apart, 0.3 m at r = 4.9 m; a VLP-16's 2 deg, at 4.0 m).
+  double ground_range_m = 4.0;
   int max_revolutions = 0;  // 0: every complete revolution
   // The first revolution's vehicle pose (a truth or GNSS track in the map frame). Empty: the
   // odometry's pose then, or the origin without odometry.

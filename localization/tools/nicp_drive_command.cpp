@@ -40,6 +40,8 @@ also DIR/odometry.tum (the CAN odometry open loop from the same first pose).
   --ground-clearance M  leave out points less than M above the vehicle's ground plane
                         (default 0.2; negative: keep them): lone ground rings pull NICP
                         towards standing still
+  --ground-range M      ... but keep those within M of the sensor, where the rings are
+                        dense enough for a plane: height, roll and pitch (default 4)
   --no-map              skip the map (the capture's second pass)
   --json                a summary: frames, failures, frame_ms_p50/p95 (statistics + registration),
                         registration_ms_p50, load_ms_p50 (the deskewed cloud), model_points,
@@ -83,6 +85,7 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
     else if (arg == "--no-deskew") a.options.deskew = false;
     else if (arg == "--ground-clearance") a.options.ground_clearance_m = maps::cli::ParseNumber(kTool, arg, value());
+    else if (arg == "--ground-range") a.options.ground_range_m = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--no-map") a.options.build_map = false;
     else if (arg == "--json") a.json = true;
     else if (IsCapture(arg) && a.options.capture.empty()) a.options.capture = std::string(arg);
