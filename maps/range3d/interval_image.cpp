@@ -53,15 +53,26 @@ void IntervalImage::ScanRows(const IndexImage& image, float jump_ratio) {
   }
 }
 
+// All columns at once, row by row: the same walk as ScanLine per column, with each
+// column's run state in a row of its own, so that the image is read in memory order.
 void IntervalImage::ScanCols(const IndexImage& image, float jump_ratio) {
-  for (int col = 0; col < image.cols(); ++col) {
-    ScanLine(
-        image.rows(), jump_ratio, [&](int row) { return image.depth(row, col); },
-        [&](int row, int bound, bool first) {
-          PixelInterval& interval = intervals_[static_cast<std::size_t>(row) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(col)];
-          (first ? interval.row_min : interval.row_max) = static_cast<std::int16_t>(bound);
-        });
-  }
+  const auto cols = static_cast<std::size_t>(image.cols());
+  run_bound_.assign(cols, 0);
+  previous_.assign(cols, -1.0F);
+  auto scan_row = [&](int row, bool first) {
+    PixelInterval* line = &intervals_[static_cast<std::size_t>(row) * cols];
+    for (std::size_t col = 0; col < cols; ++col) {
+      const float d = image.depth(row, static_cast<int>(col));
+      if (!std::isfinite(d)) continue;
+      if (previous_[col] > 0.0F && !Continuous(previous_[col], d, jump_ratio)) run_bound_[col] = row;
+      (first ? line[col].row_min : line[col].row_max) = static_cast<std::int16_t>(run_bound_[col]);
+      previous_[col] = d;
+    }
+  };
+  for (int row = 0; row < image.rows(); ++row) scan_row(row, true);
+  run_bound_.assign(cols, image.rows() - 1);
+  previous_.assign(cols, -1.0F);
+  for (int row = image.rows() - 1; row >= 0; --row) scan_row(row, false);
 }
 
 }  // namespace flat2d::maps::range3d

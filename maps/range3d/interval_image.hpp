@@ -34,6 +34,8 @@ class IntervalImage {
 
   int cols_ = 0;
   std::vector<PixelInterval> intervals_;
+  std::vector<int> run_bound_;     // ScanCols: per column, where the current run began (ended)
+  std::vector<float> previous_;    // ScanCols: per column, the last depth seen
 };
 
 }  // namespace flat2d::maps::range3d
