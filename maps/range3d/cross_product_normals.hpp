@@ -35,12 +35,13 @@ class CrossProductNormals {
   void Compute(const IndexImage& image, SurfelCloud& cloud);
 
  private:
-  void RawNormals(const IndexImage& image, const SurfelCloud& cloud);
+  void RawNormalRow(const IndexImage& image, const SurfelCloud& cloud, int row);
+  void RowSums(const IndexImage& image, const SurfelCloud& cloud);
   void BlockFilter(const IndexImage& image, SurfelCloud& cloud);
 
   const CrossProductNormalOptions options_;
   IntervalImage intervals_;
-  std::vector<Eigen::Vector3f> raw_;  // per pixel; zero where undefined
+  std::vector<Eigen::Vector3f> raw_row_;  // one row's raw normals; zero where undefined
   std::vector<Eigen::Vector4f> row_sums_;  // per row, prefix sums of (n, defined): rows x (cols + 1)
 };
 
