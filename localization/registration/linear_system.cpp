@@ -33,8 +33,10 @@ struct Moments {
 
 // Pairs are summed in float, kChunk at a time, and each chunk's sums are added to the
 // double Moments: float carries a chunk's few hundred terms to ~1e-6 (the test holds the
-// result to 1e-4 of the double reference), and structure-of-arrays columns let Eigen sum
-// 4 pairs per SSE instruction. The last chunk is padded with zero-weight pairs.
+// result to 1e-4 of the double reference). The chunk is gathered into structure-of-arrays
+// columns, then walked 4 pairs per SSE instruction with every running sum in its own
+// register set (no loop-carried chain per sum). The last chunk is padded with zero-weight
+// pairs.
 constexpr int kChunk = 256;
 using Column = Eigen::Array<float, kChunk, 1>;
 using Vec3Columns = std::array<Column, 3>;
@@ -67,93 +69,160 @@ void Gather(const maps::range3d::SurfelCloud& target, const maps::range3d::Surfe
   }
 }
 
-Vec3Columns Rotate(const Eigen::Matrix3f& r, const Vec3Columns& v) {
-  Vec3Columns out;
-  for (int row = 0; row < 3; ++row) out[row] = r(row, 0) * v[0] + r(row, 1) * v[1] + r(row, 2) * v[2];
-  return out;
+// Running sums of one chunk, 4 pairs per SSE lane set; Fold() adds them to the Moments.
+using Packet = Eigen::Array4f;
+struct Vec3Packet {
+  Packet x, y, z;
+};
+
+Vec3Packet Cross(const Vec3Packet& a, const Vec3Packet& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+Packet Dot(const Vec3Packet& a, const Vec3Packet& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+struct ChunkSums {
+  Packet weight = Packet::Zero(), chi2 = Packet::Zero(), inliers = Packet::Zero();
+  std::array<Packet, 3> x, e, x_cross_e;
+  std::array<Packet, 6> xx;          // upper triangle, row-major: 00 01 02 11 12 22
+  std::array<Packet, 21> rank_one;   // upper triangle of the 6x6, column by column
+  std::array<Packet, 6> rank_one_b;
+  ChunkSums() {
+    for (auto* group : {&x, &e, &x_cross_e}) group->fill(Packet::Zero());
+    xx.fill(Packet::Zero());
+    rank_one.fill(Packet::Zero());
+    rank_one_b.fill(Packet::Zero());
+  }
+};
+
+constexpr std::size_t Upper(std::size_t row, std::size_t col) { return col * (col + 1) / 2 + row; }  // row <= col
+
+Vec3Packet At(const Vec3Columns& columns, int k) {
+  return {columns[0].segment<4>(k), columns[1].segment<4>(k), columns[2].segment<4>(k)};
 }
 
-Column DotOf(const Vec3Columns& a, const Vec3Columns& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-Vec3Columns CrossOf(const Vec3Columns& a, const Vec3Columns& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+Vec3Packet Transform(const Eigen::Matrix3f& r, const Vec3Packet& p) {
+  return {r(0, 0) * p.x + r(0, 1) * p.y + r(0, 2) * p.z, r(1, 0) * p.x + r(1, 1) * p.y + r(1, 2) * p.z,
+          r(2, 0) * p.x + r(2, 1) * p.y + r(2, 2) * p.z};
 }
 
-// sum_k w v_a v_b over the upper triangle of `v`'s outer products into `out`.
-template <int N>
-void AddOuter(const Column& w, const std::array<const Column*, N>& v, int offset, Matrix6d& out) {
-  for (int col = 0; col < N; ++col) {
-    const Column wv = w * *v[static_cast<std::size_t>(col)];
-    for (int row = 0; row <= col; ++row) {
-      out(offset + row, offset + col) += static_cast<double>((wv * *v[static_cast<std::size_t>(row)]).sum());
+// Four pairs' terms (see Moments) into the running sums.
+template <bool kWithNormals>
+void AddPacket(const Chunk& chunk, int k, const Eigen::Isometry3f& target_T_source, const NicpOptions& options,
+               ChunkSums& s) {
+  const Eigen::Matrix3f r = target_T_source.linear();
+  const Eigen::Vector3f t = target_T_source.translation();
+  Vec3Packet x = Transform(r, At(chunk.source_point, k));
+  x.x += t.x();
+  x.y += t.y();
+  x.z += t.z();
+  const Vec3Packet target = At(chunk.target_point, k), n = At(chunk.target_normal, k);
+  const Vec3Packet e{x.x - target.x, x.y - target.y, x.z - target.z};  // Eq. 5.11
+  const Packet g = chunk.gain.segment<4>(k), valid = chunk.valid.segment<4>(k);
+  const Packet along = Dot(n, e);
+  Packet chi2 = Dot(e, e) + g * along.square();
+  const auto normal_weight = static_cast<float>(options.normal_weight);
+  Vec3Packet m{}, f{};
+  Packet normal_along = Packet::Zero();
+  if constexpr (kWithNormals) {
+    m = Transform(r, At(chunk.source_normal, k));
+    f = {m.x - n.x, m.y - n.y, m.z - n.z};
+    normal_along = Dot(n, f);
+    chi2 += normal_weight * (Dot(f, f) + g * normal_along.square());
+  }
+  const auto bound = static_cast<float>(options.chi2_bound);
+  const auto inlier = chi2 < bound;
+  const Packet gamma = valid * inlier.select(Packet::Ones(), bound / chi2);  // Eq. 4.11
+  s.inliers += valid * inlier.cast<float>();
+  s.chi2 += gamma * chi2;
+
+  // Identity parts: point block weighted gamma, normal block gamma * normal_weight.
+  s.weight += gamma;
+  const std::array<Packet, 3> xs{x.x, x.y, x.z}, es{e.x, e.y, e.z};
+  Vec3Packet x_cross_e = Cross(x, e);
+  const Packet normal_gamma = gamma * normal_weight;
+  std::array<Packet, 3> ms{};
+  if constexpr (kWithNormals) {
+    const Vec3Packet m_cross_f = Cross(m, f);
+    x_cross_e = {gamma * x_cross_e.x + normal_gamma * m_cross_f.x, gamma * x_cross_e.y + normal_gamma * m_cross_f.y,
+                 gamma * x_cross_e.z + normal_gamma * m_cross_f.z};
+    ms = {m.x, m.y, m.z};
+  } else {
+    x_cross_e = {gamma * x_cross_e.x, gamma * x_cross_e.y, gamma * x_cross_e.z};
+  }
+  s.x_cross_e[0] += x_cross_e.x;
+  s.x_cross_e[1] += x_cross_e.y;
+  s.x_cross_e[2] += x_cross_e.z;
+  std::size_t product = 0;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const Packet gx = gamma * xs[a];
+    s.x[a] += gx;
+    s.e[a] += gamma * es[a];
+    const Packet gm = normal_gamma * ms[a];
+    for (std::size_t b = a; b < 3; ++b) {
+      if constexpr (kWithNormals) {
+        s.xx[product++] += gx * xs[b] + gm * ms[b];
+      } else {
+        s.xx[product++] += gx * xs[b];
+      }
     }
+  }
+
+  // Rank-one parts (flat target points only; g = 0 adds zeros): point block
+  // v = (n, 2 x x n), normal block v = (0, 2 m x n).
+  const Packet wg = gamma * g;
+  const Vec3Packet c = Cross(x, n);
+  const std::array<Packet, 6> v{n.x, n.y, n.z, 2.0F * c.x, 2.0F * c.y, 2.0F * c.z};
+  const Packet wg_along = wg * along;
+  for (std::size_t col = 0; col < 6; ++col) {
+    const Packet weighted = wg * v[col];
+    for (std::size_t row = 0; row <= col; ++row) s.rank_one[Upper(row, col)] += weighted * v[row];
+    s.rank_one_b[col] += wg_along * v[col];
+  }
+  if constexpr (kWithNormals) {
+    const Packet wng = normal_gamma * g;
+    const Vec3Packet d = Cross(m, n);
+    const std::array<Packet, 3> vn{2.0F * d.x, 2.0F * d.y, 2.0F * d.z};
+    const Packet wng_along = wng * normal_along;
+    for (std::size_t col = 0; col < 3; ++col) {
+      const Packet weighted = wng * vn[col];
+      for (std::size_t row = 0; row <= col; ++row) s.rank_one[Upper(3 + row, 3 + col)] += weighted * vn[row];
+      s.rank_one_b[3 + col] += wng_along * vn[col];
+    }
+  }
+}
+
+void Fold(const ChunkSums& s, Moments& m) {
+  auto total = [](const Packet& p) { return static_cast<double>(p.sum()); };
+  m.weight += total(s.weight);
+  m.chi2 += total(s.chi2);
+  m.inliers += static_cast<int>(s.inliers.sum());
+  std::size_t product = 0;
+  for (int a = 0; a < 3; ++a) {
+    const auto sa = static_cast<std::size_t>(a);
+    m.x[a] += total(s.x[sa]);
+    m.e[a] += total(s.e[sa]);
+    m.x_cross_e[a] += total(s.x_cross_e[sa]);
+    for (int b = a; b < 3; ++b) m.xx(a, b) += total(s.xx[product++]);
+  }
+  for (int col = 0; col < 6; ++col) {
+    for (int row = 0; row <= col; ++row) {
+      m.rank_one(row, col) += total(s.rank_one[Upper(static_cast<std::size_t>(row), static_cast<std::size_t>(col))]);
+    }
+    m.rank_one_b[col] += total(s.rank_one_b[static_cast<std::size_t>(col)]);
   }
 }
 
 void AddChunk(const Chunk& chunk, const Eigen::Isometry3f& target_T_source, const NicpOptions& options,
               bool with_normals, Moments& m) {
-  const Eigen::Matrix3f rotation = target_T_source.linear();
-  Vec3Columns x = Rotate(rotation, chunk.source_point);
-  for (int axis = 0; axis < 3; ++axis) x[axis] += target_T_source.translation()[axis];
-  const Vec3Columns& n = chunk.target_normal;
-  Vec3Columns e;  // Eq. 5.11
-  for (int axis = 0; axis < 3; ++axis) e[axis] = x[axis] - chunk.target_point[axis];
-  const Column along = DotOf(n, e);
-  Column chi2 = DotOf(e, e) + chunk.gain * along.square();
-  const auto normal_weight = static_cast<float>(options.normal_weight);
-  Vec3Columns mv, f;
-  Column normal_along;
-  if (with_normals) {
-    mv = Rotate(rotation, chunk.source_normal);
-    for (int axis = 0; axis < 3; ++axis) f[axis] = mv[axis] - n[axis];
-    normal_along = DotOf(n, f);
-    chi2 += normal_weight * (DotOf(f, f) + chunk.gain * normal_along.square());
-  }
-  const auto bound = static_cast<float>(options.chi2_bound);
-  const Column gamma = chunk.valid * (chi2 < bound).select(Column::Ones(), bound / chi2);  // Eq. 4.11
-  m.inliers += static_cast<int>((chunk.valid > 0.5F && chi2 < bound).count());
-  m.chi2 += static_cast<double>((gamma * chi2).sum());
-
-  // Identity parts: point block with weight gamma, normal block with gamma * normal_weight.
-  m.weight += static_cast<double>(gamma.sum());
-  Vec3Columns x_cross_e = CrossOf(x, e);
-  for (int a = 0; a < 3; ++a) {
-    m.x[a] += static_cast<double>((gamma * x[a]).sum());
-    m.e[a] += static_cast<double>((gamma * e[a]).sum());
-  }
-  const Column normal_gamma = gamma * normal_weight;
-  if (with_normals) {
-    const Vec3Columns m_cross_f = CrossOf(mv, f);
-    for (int a = 0; a < 3; ++a) x_cross_e[a] = gamma * x_cross_e[a] + normal_gamma * m_cross_f[a];
-  } else {
-    for (int a = 0; a < 3; ++a) x_cross_e[a] *= gamma;
-  }
-  for (int a = 0; a < 3; ++a) {
-    m.x_cross_e[a] += static_cast<double>(x_cross_e[a].sum());
-    for (int b = a; b < 3; ++b) {
-      Column xx = gamma * x[a] * x[b];
-      if (with_normals) xx += normal_gamma * mv[a] * mv[b];
-      m.xx(a, b) += static_cast<double>(xx.sum());
+  ChunkSums sums;
+  for (int k = 0; k < kChunk; k += 4) {
+    if (with_normals) {
+      AddPacket<true>(chunk, k, target_T_source, options, sums);
+    } else {
+      AddPacket<false>(chunk, k, target_T_source, options, sums);
     }
   }
-
-  // Rank-one parts (flat target points only; g = 0 contributes nothing): point block
-  // v = (n, 2 x x n), normal block v = (0, 2 m x n).
-  const Column wg = gamma * chunk.gain;
-  const Vec3Columns c = CrossOf(x, n);
-  const Column c0 = 2.0F * c[0], c1 = 2.0F * c[1], c2 = 2.0F * c[2];
-  const std::array<const Column*, 6> v{&n[0], &n[1], &n[2], &c0, &c1, &c2};
-  AddOuter<6>(wg, v, 0, m.rank_one);
-  const Column wg_along = wg * along;
-  for (int a = 0; a < 6; ++a) m.rank_one_b[a] += static_cast<double>((wg_along * *v[static_cast<std::size_t>(a)]).sum());
-  if (!with_normals) return;
-  const Column wng = normal_gamma * chunk.gain;
-  const Vec3Columns d = CrossOf(mv, n);
-  const Column d0 = 2.0F * d[0], d1 = 2.0F * d[1], d2 = 2.0F * d[2];
-  const std::array<const Column*, 3> vn{&d0, &d1, &d2};
-  AddOuter<3>(wng, vn, 3, m.rank_one);
-  const Column wng_along = wng * normal_along;
-  for (int a = 0; a < 3; ++a) m.rank_one_b[3 + a] += static_cast<double>((wng_along * *vn[static_cast<std::size_t>(a)]).sum());
+  Fold(sums, m);
 }
 
 // H = sum J^T J + rank-one terms: [[sum w I, -2 [sum w x]x], [.., 4 (sum w |x|^2 I - sum w x x^T)]].
