@@ -35,6 +35,14 @@ PinholeIntrinsics Scaled(const PinholeIntrinsics& full, int scale) {
           full.cy * inverse};
 }
 
+// The pairs a registration could make at the finest level.
+float PointsWithNormals(const SnicpFrame& frame) {
+  const maps::range3d::SurfelCloud& cloud = frame.levels.back().cloud;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) count += cloud.has_normal(i) ? 1 : 0;
+  return static_cast<float>(count);
+}
+
 }  // namespace
 
 ModelTracker::ModelTracker(const PinholeIntrinsics& intrinsics, const ModelTrackerOptions& options)
@@ -60,6 +68,9 @@ TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3
     start = Clock::now();
     tracked.result = RegisterLevels(frame);
     tracked.register_ms = MsSince(start);
+    if (tracked.result.ok() && tracked.result.inliers < options_.min_inlier_share * PointsWithNormals(frame)) {
+      tracked.result.failure = RegistrationFailure::kTooFewCorrespondences;
+    }
     if (!tracked.result.ok()) return tracked;
     tracked.model_T_camera = model_T_predicted * tracked.result.target_T_source;
   }

@@ -9,7 +9,8 @@
 //      10 iterations; SNICP: 1/4, 1/2, full, 3 iterations each, 5.3).
 //   3. On success the frame's full-resolution cloud is merged at the estimated pose
 //      (maps/range3d/surfel_model.hpp); a failed registration keeps the prediction and
-//      leaves the model untouched, so one bad frame cannot corrupt it.
+//      leaves the model untouched, so one bad frame cannot corrupt it. Registration fails
+//      by NICP's own tests or when it pairs too small a share of the frame's points.
 #pragma once
 
 #include <vector>
@@ -29,6 +30,9 @@ struct ModelTrackerOptions {
   int iterations_per_level = 3;
   // The reference view's extra width and height on each side, as a share of the image's.
   float margin = 0.125F;
+  // A registration that pairs fewer than this share of the frame's points with normals is
+  // taken as failed (it has slid off the model), so it is not merged.
+  float min_inlier_share = 0.3F;
   maps::range3d::SurfelModelOptions model;
 };
 

@@ -103,10 +103,10 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
     double registration_ms = 0.0;
     if (options.frame_to_model) {
       const registration::TrackedFrame tracked = tracker.Track(frame, world_T_camera * guess);
-      ok = tracked.merged;
       registration_ms = tracked.register_ms;
       if (k > 0) summary.merge_ms.push_back(tracked.render_ms + tracked.merge_ms);
       motion = world_T_camera.inverse() * tracked.model_T_camera;
+      ok = tracked.merged;
     } else if (k > 0) {
       const registration::FrameRegistration r = RegisterToPrevious(previous, frame, guess, options, snicp);
       ok = r.result.ok();
