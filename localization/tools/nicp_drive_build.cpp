@@ -26,6 +26,15 @@ Eigen::Isometry3d Lift(const Eigen::Isometry2d& pose) {
   return lifted;
 }
 
+// The pose with its rotation made orthonormal again. Chained products drift off SO(3), and
+// an Isometry's inverse is the transpose: keyframe_T_sensor = world_T_keyframe^-1 world_T_sensor
+// would amplify the drift into a scale that grows from revolution to revolution.
+Eigen::Isometry3d Orthonormal(const Eigen::Isometry3d& pose) {
+  Eigen::Isometry3d fixed = pose;
+  fixed.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
+  return fixed;
+}
+
 maps::range3d::SensorModel FrameModel(hal::velodyne::Model model) {
   switch (model) {
     case hal::velodyne::Model::kVlp16: return maps::range3d::SensorModel::kVlp16;
@@ -53,21 +62,42 @@ class RevolutionTracker {
     if (result_.frames == 0) {
       Start(stamp);
     } else {
-      const Eigen::Isometry3d guess = Guess(stamp);
-      const registration::FrameRegistration r =
-          registration::RegisterFrames(previous_, current, guess, options_.method, options_.nicp);
-      result_.frame_ms.push_back(MsSince(frame_start));
-      result_.registration_ms.push_back(1e3 * r.seconds);
-      result_.load_ms.push_back(load_ms);
-      motion_ = r.result.ok() ? r.result.target_T_source : guess;
-      if (!r.result.ok()) ++result_.failures;
-      motion_ns_ = stamp - previous_ns_;
-      world_T_sensor_ = world_T_sensor_ * motion_;
+      Track(stamp, current, frame_start, load_ms);
     }
     Record(stamp, current);
     result_.sensor = std::string(maps::range3d::SensorModelName(current.sensor));
-    previous_ = std::move(current);
+    if (result_.frames == 1 || IsNewKeyframe()) {
+      keyframe_ = std::move(current);
+      world_T_keyframe_ = world_T_sensor_;
+    }
     previous_ns_ = stamp;
+  }
+
+ private:
+  // Registers the revolution to the keyframe, from the guess of its motion since the
+  // previous revolution, and moves world_T_sensor_ there.
+  void Track(TimeNs stamp, const maps::range3d::RangeFrame& current, Clock::time_point frame_start, double load_ms) {
+    const Eigen::Isometry3d keyframe_T_previous = world_T_keyframe_.inverse() * world_T_sensor_;
+    const Eigen::Isometry3d guess = keyframe_T_previous * Guess(stamp);
+    const registration::FrameRegistration r =
+        registration::RegisterFrames(keyframe_, current, guess, options_.method, options_.nicp);
+    result_.frame_ms.push_back(MsSince(frame_start));
+    result_.registration_ms.push_back(1e3 * r.seconds);
+    result_.load_ms.push_back(load_ms);
+    // A result that is not finite is a failure too (nothing downstream survives a NaN).
+    const bool ok = r.result.ok() && r.result.target_T_source.matrix().allFinite();
+    if (!ok) ++result_.failures;
+    const Eigen::Isometry3d world_T_current = Orthonormal(world_T_keyframe_ * (ok ? r.result.target_T_source : guess));
+    motion_ = world_T_sensor_.inverse() * world_T_current;
+    motion_ns_ = stamp - previous_ns_;
+    world_T_sensor_ = world_T_current;
+  }
+
+  // The keyframe is left once the sensor is keyframe_distance_m or keyframe_angle_rad from it.
+  bool IsNewKeyframe() const {
+    const Eigen::Isometry3d keyframe_T_sensor = world_T_keyframe_.inverse() * world_T_sensor_;
+    return keyframe_T_sensor.translation().norm() >= options_.keyframe_distance_m ||
+           Eigen::AngleAxisd(keyframe_T_sensor.rotation()).angle() >= options_.keyframe_angle_rad;
   }
 
  private:
@@ -153,7 +183,8 @@ class RevolutionTracker {
   std::optional<Eigen::Isometry3d> world_T_odometry_;  // places the odometry at the first pose
   Eigen::Isometry3d motion_ = Eigen::Isometry3d::Identity();  // previous_T_current of the last pair
   TimeNs motion_ns_ = 0;                                       // ... and the time it took
-  maps::range3d::RangeFrame previous_;
+  maps::range3d::RangeFrame keyframe_;  // the revolution the next one registers to
+  Eigen::Isometry3d world_T_keyframe_ = Eigen::Isometry3d::Identity();
   TimeNs previous_ns_ = 0;
 };
 

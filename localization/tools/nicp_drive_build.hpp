@@ -54,6 +54,11 @@ struct NicpDriveOptions {
   // r^2 / 1.9 m x 1.33 deg apart, 0.3 m at r = 4.9 m; a VLP-16's 2 deg, at 4.0 m).
   double ground_range_m = 4.0;
   int max_revolutions = 0;  // 0: every complete revolution
+  // Each revolution registers to the last keyframe, a revolution kept until the sensor is
+  // this far from it: fewer links in the chain than revolution to revolution (0: every
+  // revolution is a keyframe).
+  double keyframe_distance_m = 0.0;
+  double keyframe_angle_rad = 0.0;
   // The first revolution's vehicle pose (a truth or GNSS track in the map frame). Empty: the
   // odometry's pose then, or the origin without odometry.
   std::vector<evaluation::TimedPose> anchor;

@@ -1,5 +1,7 @@
 #include "localization/tools/nicp_drive_command.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -36,6 +38,10 @@ also DIR/odometry.tum (the CAN odometry open loop from the same first pose).
   --method M            nicp (default) or point-to-plane
   --iterations N        (default 10)
   --max-frames N        only the first N complete revolutions
+  --keyframe-distance M --keyframe-angle RAD
+                        register each revolution to the last keyframe, a revolution kept
+                        until the sensor is M metres or RAD radians from it (default 0, 0:
+                        revolution to revolution)
   --no-deskew           take each revolution as measured from one place
   --ground-clearance M  leave out points less than M above the vehicle's ground plane
                         (default 0.2; negative: keep them): lone ground rings pull NICP
@@ -84,6 +90,8 @@ Args ParseArgs(int argc, char** argv) {
     } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
     else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
     else if (arg == "--no-deskew") a.options.deskew = false;
+    else if (arg == "--keyframe-distance") a.options.keyframe_distance_m = maps::cli::ParseNumber(kTool, arg, value());
+    else if (arg == "--keyframe-angle") a.options.keyframe_angle_rad = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--ground-clearance") a.options.ground_clearance_m = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--ground-range") a.options.ground_range_m = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--no-map") a.options.build_map = false;
@@ -173,8 +181,11 @@ void PrintDrift(const char* prefix, const Drift& d) {
 }  // namespace
 
 bool IsDriveBuild(int argc, char** argv) {
+  // The flags of either mode that take no value.
+  constexpr std::array<std::string_view, 4> kSwitches{"--json", "--no-deskew", "--no-map", "--identity-guess"};
   for (int i = 0; i < argc; ++i) {
-    const bool option_value = i > 0 && std::string_view(argv[i - 1]).starts_with("--");
+    const std::string_view before = i > 0 ? argv[i - 1] : "";
+    const bool option_value = before.starts_with("--") && std::find(kSwitches.begin(), kSwitches.end(), before) == kSwitches.end();
     if (IsCapture(argv[i]) && !option_value) return true;
   }
   return false;
