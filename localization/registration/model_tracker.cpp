@@ -58,21 +58,22 @@ ModelTracker::ModelTracker(const PinholeIntrinsics& intrinsics, const ModelTrack
   }
 }
 
-TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3d& model_T_predicted) {
+TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3d& model_T_reference,
+                                 const Eigen::Isometry3d& reference_T_guess) {
   TrackedFrame tracked;
-  tracked.model_T_camera = model_T_predicted;
+  tracked.model_T_camera = model_T_reference * reference_T_guess;
   if (model_.size() > 0) {
     Clock::time_point start = Clock::now();
-    RenderReference(model_T_predicted.cast<float>());
+    RenderReference(model_T_reference.cast<float>());
     tracked.render_ms = MsSince(start);
     start = Clock::now();
-    tracked.result = RegisterLevels(frame);
+    tracked.result = RegisterLevels(frame, reference_T_guess);
     tracked.register_ms = MsSince(start);
     if (tracked.result.ok() && tracked.result.inliers < options_.min_inlier_share * PointsWithNormals(frame)) {
       tracked.result.failure = RegistrationFailure::kTooFewCorrespondences;
     }
     if (!tracked.result.ok()) return tracked;
-    tracked.model_T_camera = model_T_predicted * tracked.result.target_T_source;
+    tracked.model_T_camera = model_T_reference * tracked.result.target_T_source;
   }
   const Clock::time_point start = Clock::now();
   const maps::range3d::RangeFrame& full = frame.levels.back();
@@ -82,8 +83,8 @@ TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3
   return tracked;
 }
 
-void ModelTracker::RenderReference(const Eigen::Isometry3f& model_T_predicted) {
-  model_.Render(full_view_, model_T_predicted, view_, view_image_);
+void ModelTracker::RenderReference(const Eigen::Isometry3f& model_T_reference) {
+  model_.Render(full_view_, model_T_reference, view_, view_image_);
   for (std::size_t level = 0; level < options_.scales.size(); ++level) {
     const int scale = options_.scales[level];
     maps::range3d::IndexImage& image = level_images_[level];
@@ -98,10 +99,11 @@ void ModelTracker::RenderReference(const Eigen::Isometry3f& model_T_predicted) {
   }
 }
 
-RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame) {
+RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const Eigen::Isometry3d& reference_T_guess) {
   NicpOptions nicp = options_.nicp;
   nicp.iterations = options_.iterations_per_level;
   RegistrationResult result;
+  result.target_T_source = reference_T_guess;
   int iterations = 0;
   for (std::size_t level = 0; level < level_views_.size() && level < frame.levels.size(); ++level) {
     ProjectiveCorrespondenceFinder finder(view_, level_views_[level], &level_images_[level]);

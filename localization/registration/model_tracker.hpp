@@ -1,12 +1,15 @@
 // Frame-to-model tracking of depth frames (thesis 5.1.4, 5.2.2-5.2.3): each new frame is
 // registered against the merged model rather than the frame before it, then merged in.
 //
-//   1. The model is rendered from the predicted camera pose through a projection wider
-//      than the camera's (5.2.2), so that the frame stays inside the reference view while
-//      the optimization moves it; coarser levels take every s-th pixel of that view.
-//   2. The frame is registered to the rendered view in the inverse form of Eq. 5.20: the
-//      reference projection is fixed and the frame moves, level by level (NICP: one level,
-//      10 iterations; SNICP: 1/4, 1/2, full, 3 iterations each, 5.3).
+//   1. The model is rendered from the last tracked pose, the reference, through a
+//      projection wider than the camera's (5.2.2), so that the frame stays inside the
+//      reference view while the optimization moves it; coarser levels take every s-th
+//      pixel of that view. Rendered from its own pose, a frame's image comes back pixel
+//      for pixel, so with a model of one frame this is frame-to-frame registration.
+//   2. The frame is registered to the rendered view in the inverse form of Eq. 5.20 from
+//      the predicted motion: the reference projection is fixed and the frame moves, level
+//      by level (NICP: one level, 10 iterations; SNICP: 1/4, 1/2, full, 3 iterations
+//      each, 5.3).
 //   3. On success the frame's full-resolution cloud is merged at the estimated pose
 //      (maps/range3d/surfel_model.hpp); a failed registration keeps the prediction and
 //      leaves the model untouched, so one bad frame cannot corrupt it. Registration fails
@@ -37,7 +40,7 @@ struct ModelTrackerOptions {
 };
 
 struct TrackedFrame {
-  RegistrationResult result;  // predicted_T_camera; iterations summed over the levels
+  RegistrationResult result;  // reference_T_camera; iterations summed over the levels
   Eigen::Isometry3d model_T_camera = Eigen::Isometry3d::Identity();
   bool merged = false;
   maps::range3d::MergeStats merge;
@@ -52,14 +55,17 @@ class ModelTracker {
   ModelTracker(const maps::range3d::PinholeIntrinsics& intrinsics, const ModelTrackerOptions& options);
 
   // `frame.levels` matches options.scales (MakeSnicpFrame, or one FrameFromDepth level).
-  // The first frame only seeds the model, at model_T_predicted.
-  TrackedFrame Track(const SnicpFrame& frame, const Eigen::Isometry3d& model_T_predicted);
+  // The model is seen from model_T_reference (the last tracked pose) and the frame starts
+  // at reference_T_guess. The first frame only seeds the model, at model_T_reference *
+  // reference_T_guess.
+  TrackedFrame Track(const SnicpFrame& frame, const Eigen::Isometry3d& model_T_reference,
+                     const Eigen::Isometry3d& reference_T_guess);
 
   const maps::range3d::SurfelModel& model() const { return model_; }
 
  private:
-  void RenderReference(const Eigen::Isometry3f& model_T_predicted);
-  RegistrationResult RegisterLevels(const SnicpFrame& frame);
+  void RenderReference(const Eigen::Isometry3f& model_T_reference);
+  RegistrationResult RegisterLevels(const SnicpFrame& frame, const Eigen::Isometry3d& reference_T_guess);
 
   const ModelTrackerOptions options_;
   maps::range3d::SurfelModel model_;

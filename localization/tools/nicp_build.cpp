@@ -102,7 +102,7 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
     bool ok = true;
     double registration_ms = 0.0;
     if (options.frame_to_model) {
-      const registration::TrackedFrame tracked = tracker.Track(frame, world_T_camera * guess);
+      const registration::TrackedFrame tracked = tracker.Track(frame, world_T_camera, guess);
       registration_ms = tracked.register_ms;
       if (k > 0) summary.merge_ms.push_back(tracked.render_ms + tracked.merge_ms);
       motion = world_T_camera.inverse() * tracked.model_T_camera;

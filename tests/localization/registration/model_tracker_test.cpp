@@ -51,7 +51,7 @@ TEST(ModelTracker, TracksADriftFreeCameraThroughTheMergedModel) {
   constexpr int kFrames = 12;
   for (int k = 0; k < kFrames; ++k) {
     const SnicpFrame frame = FrameAt(k, noise);
-    const TrackedFrame tracked = tracker.Track(frame, model_T_camera * motion);
+    const TrackedFrame tracked = tracker.Track(frame, model_T_camera, motion);
     ASSERT_TRUE(tracked.merged) << "frame " << k << ": " << FailureName(tracked.result.failure);
     motion = model_T_camera.inverse() * tracked.model_T_camera;
     model_T_camera = tracked.model_T_camera;
@@ -70,7 +70,7 @@ TEST(ModelTracker, TracksADriftFreeCameraThroughTheMergedModel) {
 TEST(ModelTracker, AFailedRegistrationLeavesTheModelUntouched) {
   ModelTracker tracker(PinholeIntrinsics{}, ModelTrackerOptions{});
   std::mt19937 noise(7);
-  (void)tracker.Track(FrameAt(0, noise), Eigen::Isometry3d::Identity());
+  (void)tracker.Track(FrameAt(0, noise), Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity());
   const std::size_t before = tracker.model().size();
   hal::cloud::DepthImage blank;
   blank.width = 640;
@@ -78,7 +78,7 @@ TEST(ModelTracker, AFailedRegistrationLeavesTheModelUntouched) {
   blank.depth_m.assign(640U * 480U, 0.0F);  // nothing measured
   const SnicpFrame nothing = MakeSnicpFrame(blank, maps::range3d::RangeFrameOptions{}, SnicpOptions{});
   const Eigen::Isometry3d predicted = Eigen::Isometry3d(Eigen::Translation3d(0.1, 0.0, 0.0));
-  const TrackedFrame tracked = tracker.Track(nothing, predicted);
+  const TrackedFrame tracked = tracker.Track(nothing, Eigen::Isometry3d::Identity(), predicted);
   EXPECT_FALSE(tracked.result.ok());
   EXPECT_FALSE(tracked.merged);
   EXPECT_TRUE(tracked.model_T_camera.isApprox(predicted));
@@ -97,7 +97,7 @@ TEST(ModelTracker, NicpWithOneLevelTracksToo) {
     const auto depth = testing::RenderDepth(testing::OfficeRoom(), PinholeIntrinsics{}, CameraAt(3 * k), 0.002F, noise);
     SnicpFrame frame;
     frame.levels.push_back(maps::range3d::FrameFromDepth(depth, frames));
-    const TrackedFrame tracked = tracker.Track(frame, model_T_camera);
+    const TrackedFrame tracked = tracker.Track(frame, model_T_camera, Eigen::Isometry3d::Identity());
     ASSERT_TRUE(tracked.merged) << "frame " << k;
     model_T_camera = tracked.model_T_camera;
   }
