@@ -90,7 +90,15 @@ class RevolutionTracker {
     const Eigen::Isometry3d world_T_current = Orthonormal(world_T_keyframe_ * (ok ? r.result.target_T_source : guess));
     motion_ = world_T_sensor_.inverse() * world_T_current;
     motion_ns_ = stamp - previous_ns_;
-    world_T_sensor_ = world_T_current;
+    world_T_sensor_ = options_.planar ? OnThePlane(world_T_current) : world_T_current;
+  }
+
+  // The sensor where the vehicle would be on the ground plane: height, roll and pitch zero.
+  Eigen::Isometry3d OnThePlane(const Eigen::Isometry3d& world_T_sensor) const {
+    const Eigen::Isometry3d world_T_vehicle = world_T_sensor * vehicle_T_sensor_.inverse();
+    const maps::StampedPose2d flat = maps::Flatten(0, world_T_vehicle);
+    const Eigen::Isometry2d planar = Eigen::Translation2d(flat.position) * Eigen::Rotation2Dd(flat.yaw);
+    return Lift(planar) * vehicle_T_sensor_;
   }
 
   // The keyframe is left once the sensor is keyframe_distance_m or keyframe_angle_rad from it.

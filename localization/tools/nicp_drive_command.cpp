@@ -22,8 +22,8 @@ namespace flat2d::localization::tools {
 const char* const kNicpDriveUsage = R"(
 build --mode nicp DRIVE --out DIR: a Velodyne capture (.pcap, .pcapng), each complete
 revolution deskewed, made an organized range frame (spherical projection of the identified
-model, statistics over R = 0.3 m) and tracked by NICP against the previous revolution (frame
-to frame). Writes DIR/trajectory.tum (world_T_vehicle at each revolution's first fan),
+model, statistics over R = 0.3 m) and tracked by NICP against the last keyframe revolution
+(a new one every metre or 0.1 rad). Writes DIR/trajectory.tum (world_T_vehicle at each revolution's first fan),
 DIR/model.ply (points and normals of every 10th revolution, every 16th point), DIR/map.f2m
 (the 2D prior map: the capture gridded at the tracked poses) and DIR/map.png; with a CAN log
 also DIR/odometry.tum (the CAN odometry open loop from the same first pose).
@@ -40,9 +40,11 @@ also DIR/odometry.tum (the CAN odometry open loop from the same first pose).
   --max-frames N        only the first N complete revolutions
   --keyframe-distance M --keyframe-angle RAD
                         register each revolution to the last keyframe, a revolution kept
-                        until the sensor is M metres or RAD radians from it (default 0, 0:
-                        revolution to revolution)
+                        until the sensor is M metres or RAD radians from it (default 1, 0.1;
+                        0, 0: revolution to revolution)
   --no-deskew           take each revolution as measured from one place
+  --planar              keep the vehicle on the ground plane after every registration
+                        (height, roll and pitch zero): flat ground
   --ground-clearance M  leave out points less than M above the vehicle's ground plane
                         (default 0.2; negative: keep them): lone ground rings pull NICP
                         towards standing still
@@ -90,6 +92,7 @@ Args ParseArgs(int argc, char** argv) {
     } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
     else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
     else if (arg == "--no-deskew") a.options.deskew = false;
+    else if (arg == "--planar") a.options.planar = true;
     else if (arg == "--keyframe-distance") a.options.keyframe_distance_m = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--keyframe-angle") a.options.keyframe_angle_rad = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--ground-clearance") a.options.ground_clearance_m = maps::cli::ParseNumber(kTool, arg, value());
@@ -182,7 +185,7 @@ void PrintDrift(const char* prefix, const Drift& d) {
 
 bool IsDriveBuild(int argc, char** argv) {
   // The flags of either mode that take no value.
-  constexpr std::array<std::string_view, 4> kSwitches{"--json", "--no-deskew", "--no-map", "--identity-guess"};
+  constexpr std::array<std::string_view, 5> kSwitches{"--json", "--no-deskew", "--no-map", "--planar", "--identity-guess"};
   for (int i = 0; i < argc; ++i) {
     const std::string_view before = i > 0 ? argv[i - 1] : "";
     const bool option_value = before.starts_with("--") && std::find(kSwitches.begin(), kSwitches.end(), before) == kSwitches.end();
