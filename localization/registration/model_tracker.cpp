@@ -5,6 +5,7 @@
 
 #include "localization/registration/correspondence_finder.hpp"
 #include "localization/registration/nicp.hpp"
+#include "localization/registration/rigid_transform.hpp"
 
 namespace flat2d::localization::registration {
 
@@ -61,7 +62,7 @@ ModelTracker::ModelTracker(const PinholeIntrinsics& intrinsics, const ModelTrack
 TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3d& model_T_reference,
                                  const Eigen::Isometry3d& reference_T_guess) {
   TrackedFrame tracked;
-  tracked.model_T_camera = model_T_reference * reference_T_guess;
+  tracked.model_T_camera = Orthonormalized(model_T_reference * reference_T_guess);
   if (model_.size() > 0) {
     Clock::time_point start = Clock::now();
     RenderReference(model_T_reference.cast<float>());
@@ -73,7 +74,7 @@ TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3
       tracked.result.failure = RegistrationFailure::kTooFewCorrespondences;
     }
     if (!tracked.result.ok()) return tracked;
-    tracked.model_T_camera = model_T_reference * tracked.result.target_T_source;
+    tracked.model_T_camera = Orthonormalized(model_T_reference * tracked.result.target_T_source);
   }
   const Clock::time_point start = Clock::now();
   const maps::range3d::RangeFrame& full = frame.levels.back();

@@ -1,10 +1,12 @@
 #include "localization/tools/nicp_build.hpp"
 
 #include <chrono>
+#include <optional>
 
 #include "hal/cloud/ply_writer.hpp"
 #include "hal/cloud/tum_depth_png.hpp"
 #include "hal/trajectory/tum_file.hpp"
+#include "localization/registration/rigid_transform.hpp"
 
 namespace flat2d::localization::tools {
 
@@ -86,7 +88,7 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
   std::vector<hal::trajectory::StampedPose> trajectory;
   std::vector<Eigen::Vector3f> model_points, model_normals;
   const registration::SnicpOptions snicp;
-  registration::ModelTracker tracker(options.frames.intrinsics, TrackerOptions(options, snicp));
+  std::optional<registration::ModelTracker> tracker;  // sized by the first frame's image
   registration::SnicpFrame previous;
   Eigen::Isometry3d world_T_camera = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // previous_T_current of the last pair
@@ -102,10 +104,11 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
     bool ok = true;
     double registration_ms = 0.0;
     if (options.frame_to_model) {
-      const registration::TrackedFrame tracked = tracker.Track(frame, world_T_camera, guess);
+      if (!tracker) tracker.emplace(frame.levels.back().projection.intrinsics(), TrackerOptions(options, snicp));
+      const registration::TrackedFrame tracked = tracker->Track(frame, world_T_camera, guess);
       registration_ms = tracked.register_ms;
       if (k > 0) summary.merge_ms.push_back(tracked.render_ms + tracked.merge_ms);
-      motion = world_T_camera.inverse() * tracked.model_T_camera;
+      motion = world_T_camera.inverse() * tracked.model_T_camera;  // both rigid
       ok = tracked.merged;
     } else if (k > 0) {
       const registration::FrameRegistration r = RegisterToPrevious(previous, frame, guess, options, snicp);
@@ -118,7 +121,7 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
       summary.registration_ms.push_back(registration_ms);
       summary.load_ms.push_back(load_ms);
       summary.failures += ok ? 0 : 1;
-      world_T_camera = world_T_camera * motion;
+      world_T_camera = registration::Orthonormalized(world_T_camera * motion);
     }
     trajectory.push_back(PoseAt(entry.time_s, world_T_camera));
     if (!options.frame_to_model && options.model_every > 0 && k % static_cast<std::size_t>(options.model_every) == 0) {
@@ -126,9 +129,9 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
     }
     previous = std::move(frame);
   }
-  if (options.frame_to_model) {
-    model_points = tracker.model().cloud().points;
-    model_normals = tracker.model().cloud().normals;
+  if (tracker) {
+    model_points = tracker->model().cloud().points;
+    model_normals = tracker->model().cloud().normals;
   }
   summary.frames = static_cast<int>(count);
   summary.model_points = model_points.size();

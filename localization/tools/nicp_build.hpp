@@ -2,11 +2,11 @@
 // (thesis 5.1-5.3), written as a TUM trajectory and a PLY model. The first frame is the
 // world; each frame's guess is the previous motion (a constant-velocity camera).
 //
-// Frame to frame (the default): each frame registered to the one before it and the poses
-// chained, world_T_k = world_T_{k-1} T; the PLY samples every 10th frame. Frame to model
-// (5.1.4): each frame registered against the merged model rendered from the predicted
-// pose, then merged into it (registration/model_tracker.hpp); the PLY is the model.
-// Either way a failed registration keeps the guess and is counted.
+// Frame to model (the default, 5.1.4): each frame registered against the merged model
+// rendered from the last pose, then merged into it (registration/model_tracker.hpp); the
+// PLY is the model. Frame to frame: each frame registered to the one before it and the
+// poses chained, world_T_k = world_T_{k-1} T; the PLY samples every 10th frame. Either
+// way a failed registration keeps the guess and is counted.
 #pragma once
 
 #include <filesystem>
@@ -27,7 +27,7 @@ struct NicpBuildOptions {
   maps::range3d::RangeFrameOptions frames;
   bool snicp = false;             // SNICP (5.2) instead of `method`
   bool constant_velocity = true;  // false: every pair starts from identity
-  bool frame_to_model = false;    // true: frame to model
+  bool frame_to_model = true;     // false: frame to frame
   maps::range3d::SurfelModelOptions model;
   int max_frames = 0;             // 0: the whole list
   // Frame to frame, the PLY model: the points of every model_every-th frame, every

@@ -12,13 +12,13 @@ namespace flat2d::localization::tools {
 
 const char* const kNicpBuildUsage = R"(
 build --mode nicp LIST --out DIR: the depth frames of a TUM list (depth.txt: "time file")
-tracked by NICP frame to frame or against the merged model of the frames before (thesis
-5.1.4); writes DIR/trajectory.tum (world_T_camera, the first frame is the world, the list's
-stamps) and DIR/model.ply (points and normals: every 10th frame's, or the merged model).
+tracked by NICP against the merged model of the frames before (thesis 5.1.4), or frame to
+frame; writes DIR/trajectory.tum (world_T_camera, the first frame is the world, the list's
+stamps) and DIR/model.ply (the merged model's points and normals, or every 10th frame's).
   --method M            nicp (default), point-to-plane or snicp (cross-product normals,
                         3 iterations at 1/4, 1/2 and full resolution)
-  --tracking T          frame (default: frame to frame) or model (frame to model, each
-                        frame merged; a frame that fails is not merged)
+  --tracking T          model (default: frame to model, each frame merged; a frame that
+                        fails is not) or frame (frame to frame)
   --identity-guess      start every pair from identity (default: the previous motion)
   --max-frames N        only the first N frames
   --image-scale N       every N-th pixel and row (default 1)

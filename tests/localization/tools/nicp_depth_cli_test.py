@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""flat2d-map build --mode nicp depth.txt as users call it: TUM fr1/rpy tracked frame to model
+and frame to frame, judged by flat2d-eval traj --3d against the motion capture, the files
+written, and the exit statuses on bad input.
+
+usage: nicp_depth_cli_test.py FLAT2D_MAP FLAT2D_EVAL DATA_DIR WORK_DIR [quick]
+Needs ../shared/data/depth/tum_rgbd_fr1_rpy_first200 (exit 77, skipped, without it). The frames
+are taken at 320 x 240 (--image-scale 2) to keep the test short; "quick" (the sanitizer
+build) tracks 12 frames and checks the files and statuses, not the accuracy.
+"""
+import json
+import os
+import subprocess
+import sys
+import unittest
+
+MAP, EVAL, DATA, WORK = sys.argv[1:5]
+QUICK = len(sys.argv) > 5 and sys.argv[5] == "quick"
+TUM = os.path.join(os.environ.get("FLAT2D_DATA", DATA), "depth", "tum_rgbd_fr1_rpy_first200")
+FRAMES = 12 if QUICK else 60
+# Frames 0-59 at 320 x 240, measured on 2026-12-04: frame to model ATE 0.044 m, frame to
+# frame 0.105 m. The bounds leave a margin of 1.6x; the model must also beat the chain.
+MODEL_ATE_M = 0.07
+
+
+def run(tool, *args):
+    return subprocess.run([tool, *args], capture_output=True, text=True, timeout=900)
+
+
+def build(tracking, out, *extra):
+    return run(MAP, "build", "--mode", "nicp", os.path.join(TUM, "depth.txt"), "--image-scale", "2",
+               "--max-frames", str(FRAMES), "--tracking", tracking, "--out", out, "--json", *extra)
+
+
+def ate(out):
+    result = run(EVAL, "traj", "--3d", "--truth", os.path.join(TUM, "groundtruth.txt"),
+                 "--est", os.path.join(out, "trajectory.tum"), "--json")
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout)["ate_rmse_m"]
+
+
+def ply_vertices(path):
+    with open(path, "rb") as f:
+        header = f.read(512).split(b"end_header")[0].decode()
+    for line in header.splitlines():
+        if line.startswith("element vertex"):
+            return int(line.split()[2])
+    return -1
+
+
+class NicpDepthList(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        os.makedirs(WORK, exist_ok=True)
+        cls.model_out = os.path.join(WORK, "fr1_model")
+        cls.frame_out = os.path.join(WORK, "fr1_frame")
+        cls.model = build("model", cls.model_out)
+        cls.frame = build("frame", cls.frame_out)
+
+    def test_frame_to_model_writes_its_summary_trajectory_and_model(self):
+        self.assertEqual(self.model.returncode, 0, self.model.stderr)
+        s = json.loads(self.model.stdout)
+        for key in ("frames", "failures", "frame_ms_p50", "frame_ms_p95", "registration_ms_p50", "merge_ms_p50",
+                    "load_ms_p50", "model_points", "method", "tracking"):
+            self.assertIn(key, s)
+        self.assertEqual((s["frames"], s["failures"], s["method"], s["tracking"]), (FRAMES, 0, "nicp", "model"))
+        with open(os.path.join(self.model_out, "trajectory.tum")) as f:
+            self.assertEqual(len([l for l in f if not l.startswith("#")]), FRAMES)
+        # The merged model: more than one frame's points (320 x 240), fewer than every frame's.
+        vertices = ply_vertices(os.path.join(self.model_out, "model.ply"))
+        self.assertEqual(vertices, s["model_points"])
+        self.assertGreater(vertices, 320 * 240)
+        self.assertLess(vertices, FRAMES * 320 * 240 // 2)
+
+    def test_frame_to_model_drifts_less_than_the_chain_of_frames(self):
+        if QUICK:
+            self.skipTest("accuracy is judged in the release build")
+        self.assertEqual(self.frame.returncode, 0, self.frame.stderr)
+        model_ate, frame_ate = ate(self.model_out), ate(self.frame_out)
+        print("ATE over %d frames: frame to model %.3f m, frame to frame %.3f m" % (FRAMES, model_ate, frame_ate))
+        self.assertLess(model_ate, MODEL_ATE_M)
+        self.assertLess(model_ate, 0.8 * frame_ate)
+
+    def test_bad_input_is_refused_with_a_status(self):
+        self.assertEqual(build("sideways", os.path.join(WORK, "bad")).returncode, 1)
+        missing = run(MAP, "build", "--mode", "nicp", os.path.join(WORK, "no_such_list.txt"), "--out",
+                      os.path.join(WORK, "bad"))
+        self.assertEqual(missing.returncode, 2)
+        self.assertIn("no_such_list.txt", missing.stderr)
+
+
+if __name__ == "__main__":
+    if not os.path.isdir(TUM):
+        print("nicp_depth_cli_test: skipped, no %s (set FLAT2D_DATA)" % TUM)
+        sys.exit(77)
+    unittest.main(argv=sys.argv[:1], verbosity=2)
