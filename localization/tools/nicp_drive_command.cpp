@@ -23,10 +23,11 @@ const char* const kNicpDriveUsage = R"(
 build --mode nicp DRIVE --out DIR: a Velodyne capture (.pcap, .pcapng), each complete
 revolution deskewed, made an organized range frame (spherical projection of the identified
 model, statistics over R = 0.3 m) and tracked by NICP against the last keyframe revolution
-(a new one every metre or 0.1 rad). Writes DIR/trajectory.tum (world_T_vehicle at each revolution's first fan),
-DIR/model.ply (points and normals of every 10th revolution, every 16th point), DIR/map.f2m
-(the 2D prior map: the capture gridded at the tracked poses) and DIR/map.png; with a CAN log
-also DIR/odometry.tum (the CAN odometry open loop from the same first pose).
+(a new one every metre or 0.1 rad). Writes DIR/trajectory.tum (world_T_vehicle at each
+revolution's first fan), DIR/model.ply (points and normals of every 10th revolution, every
+16th point), DIR/map.f2m (the 2D prior map: the capture gridded at the tracked poses) and
+DIR/map.png; with a CAN log also DIR/odometry.tum (the CAN odometry open loop from the same
+first pose).
   --can LOG --dbc DBC --odometry CONFIG
                         CAN odometry, as for build --pcap: the guess of every pair and the
                         motion that deskews each revolution (default: the previous motion)
@@ -51,10 +52,12 @@ also DIR/odometry.tum (the CAN odometry open loop from the same first pose).
   --ground-range M      ... but keep those within M of the sensor, where the rings are
                         dense enough for a plane: height, roll and pitch (default 4)
   --no-map              skip the map (the capture's second pass)
-  --json                a summary: frames, failures, frame_ms_p50/p95 (statistics + registration),
-                        registration_ms_p50, load_ms_p50 (the deskewed cloud), model_points,
-                        method, sensor, tracked_distance_m, grid_seconds, map (tiles ...), and with
-                        --anchor drift_percent, end_error_m, max_error_m (and odometry_*)
+  --json                a summary: frames, failures, frame_ms_p50/p95 (statistics +
+                        registration), registration_ms_p50, load_ms_p50 (the deskewed
+                        cloud), model_points, method, sensor, deskew, guess,
+                        guesses_without_odometry, grid_seconds, viewpoints,
+                        tracked_distance_m; with --anchor distance_m, drift_percent,
+                        end_error_m, max_error_m, end_heading_error_deg (and odometry_*)
 )";
 
 namespace {
