@@ -56,7 +56,7 @@ first pose).
                         registration), registration_ms_p50, load_ms_p50 (the deskewed
                         cloud), model_points, method, sensor, deskew, guess,
                         guesses_without_odometry, grid_seconds, viewpoints,
-                        tracked_distance_m; with --anchor distance_m, drift_percent,
+                        tracked_distance_m, tracking (keyframe or frame); with --anchor distance_m, drift_percent,
                         end_error_m, max_error_m, end_heading_error_deg (and odometry_*)
 )";
 
@@ -219,11 +219,12 @@ int NicpDriveCommand(int argc, char** argv) {
   std::printf("{\"frames\": %d, \"failures\": %d, \"frame_ms_p50\": %.3f, \"frame_ms_p95\": %.3f, "
               "\"registration_ms_p50\": %.3f, \"load_ms_p50\": %.3f, \"model_points\": %zu, \"method\": \"%s\", "
               "\"sensor\": \"%s\", \"deskew\": %s, \"guess\": \"%s\", \"guesses_without_odometry\": %d, "
-              "\"grid_seconds\": %.3f, \"viewpoints\": %zu, \"tracked_distance_m\": %.3f",
+              "\"grid_seconds\": %.3f, \"viewpoints\": %zu, \"tracked_distance_m\": %.3f, \"tracking\": \"%s\"",
               r.frames, r.failures, frame.p50, frame.p95, registration_p50, load_p50, r.model_points.size(),
               std::string(registration::MethodName(a.options.method)).c_str(), r.sensor.c_str(),
               a.options.deskew ? "true" : "false", a.options.can_log ? "can" : "constant-velocity",
-              r.guesses_without_odometry, r.grid_seconds, viewpoints, PathLength(r.trajectory));
+              r.guesses_without_odometry, r.grid_seconds, viewpoints, PathLength(r.trajectory),
+              a.options.keyframe_distance_m > 0.0 || a.options.keyframe_angle_rad > 0.0 ? "keyframe" : "frame");
   if (!a.options.anchor.empty()) {
     const Drift nicp = DriftAgainst(a.options.anchor, r.trajectory);
     std::printf(", \"distance_m\": %.3f", nicp.distance_m);

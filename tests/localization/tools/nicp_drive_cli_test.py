@@ -49,10 +49,12 @@ class NicpDrive(unittest.TestCase):
         self.assertEqual(self.build.returncode, 0, self.build.stderr)
         s = json.loads(self.build.stdout)
         for key in ("frames", "failures", "frame_ms_p50", "frame_ms_p95", "registration_ms_p50", "load_ms_p50",
-                    "model_points", "method", "sensor", "guess", "drift_percent", "odometry_drift_percent"):
+                    "model_points", "method", "sensor", "guess", "tracking", "drift_percent",
+                    "odometry_drift_percent"):
             self.assertIn(key, s)
         self.assertEqual(s["sensor"], "vlp16")
         self.assertEqual(s["guess"], "can")
+        self.assertEqual(s["tracking"], "keyframe")
         self.assertGreaterEqual(s["frames"], 20 if QUICK else 75)  # 10 Hz
         self.assertEqual(s["failures"], 0)
         with open(os.path.join(self.out, "trajectory.tum")) as f:
