@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "hal/net/datagram_source.hpp"
+#include "localization/registration/rigid_transform.hpp"
 #include "localization/tools/grid_run.hpp"
 #include "localization/tools/odometry_poses.hpp"
 #include "localization/tools/revolution_cloud.hpp"
@@ -24,15 +25,6 @@ Eigen::Isometry3d Lift(const Eigen::Isometry2d& pose) {
   lifted.linear().topLeftCorner<2, 2>() = pose.linear();
   lifted.translation().head<2>() = pose.translation();
   return lifted;
-}
-
-// The pose with its rotation made orthonormal again. Chained products drift off SO(3), and
-// an Isometry's inverse is the transpose: keyframe_T_sensor = world_T_keyframe^-1 world_T_sensor
-// would amplify the drift into a scale that grows from revolution to revolution.
-Eigen::Isometry3d Orthonormal(const Eigen::Isometry3d& pose) {
-  Eigen::Isometry3d fixed = pose;
-  fixed.linear() = Eigen::Quaterniond(pose.linear()).normalized().toRotationMatrix();
-  return fixed;
 }
 
 maps::range3d::SensorModel FrameModel(hal::velodyne::Model model) {
@@ -87,7 +79,7 @@ class RevolutionTracker {
     // A result that is not finite is a failure too (nothing downstream survives a NaN).
     const bool ok = r.result.ok() && r.result.target_T_source.matrix().allFinite();
     if (!ok) ++result_.failures;
-    const Eigen::Isometry3d world_T_current = Orthonormal(world_T_keyframe_ * (ok ? r.result.target_T_source : guess));
+    const Eigen::Isometry3d world_T_current = registration::Orthonormalized(world_T_keyframe_ * (ok ? r.result.target_T_source : guess));
     motion_ = world_T_sensor_.inverse() * world_T_current;
     motion_ns_ = stamp - previous_ns_;
     world_T_sensor_ = options_.planar ? OnThePlane(world_T_current) : world_T_current;
