@@ -47,16 +47,22 @@ float PointsWithNormals(const SnicpFrame& frame) {
 }  // namespace
 
 ModelTracker::ModelTracker(const PinholeIntrinsics& intrinsics, const ModelTrackerOptions& options)
-    : options_(options), model_(options.model) {
-  int coarsest = 1;
-  for (const int scale : options.scales) coarsest = std::max(coarsest, scale);
-  const PinholeIntrinsics wide = Widened(intrinsics, options.margin, coarsest);
-  full_view_ = RangeProjection::Pinhole(wide);
-  view_image_.Reserve(wide.rows, wide.cols);
-  for (const int scale : options.scales) {
-    level_views_.push_back(RangeProjection::Pinhole(Scaled(wide, scale)));
-    level_images_.emplace_back().Reserve(level_views_.back().rows(), level_views_.back().cols());
+    : ModelTracker(RangeProjection::Pinhole(intrinsics), options) {}
+
+ModelTracker::ModelTracker(const RangeProjection& sensor, const ModelTrackerOptions& options)
+    : options_(options), model_(options.model), scales_(sensor.pinhole() ? options.scales : std::vector<int>{1}) {
+  if (!sensor.pinhole()) {
+    full_view_ = sensor;
+    level_views_.push_back(sensor);
+  } else {
+    int coarsest = 1;
+    for (const int scale : scales_) coarsest = std::max(coarsest, scale);
+    const PinholeIntrinsics wide = Widened(sensor.intrinsics(), options.margin, coarsest);
+    full_view_ = RangeProjection::Pinhole(wide);
+    for (const int scale : scales_) level_views_.push_back(RangeProjection::Pinhole(Scaled(wide, scale)));
   }
+  view_image_.Reserve(full_view_.rows(), full_view_.cols());
+  for (const RangeProjection& view : level_views_) level_images_.emplace_back().Reserve(view.rows(), view.cols());
 }
 
 TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3d& model_T_reference,
@@ -86,8 +92,8 @@ TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3
 
 void ModelTracker::RenderReference(const Eigen::Isometry3f& model_T_reference) {
   model_.Render(full_view_, model_T_reference, view_, view_image_);
-  for (std::size_t level = 0; level < options_.scales.size(); ++level) {
-    const int scale = options_.scales[level];
+  for (std::size_t level = 0; level < scales_.size(); ++level) {
+    const int scale = scales_[level];
     maps::range3d::IndexImage& image = level_images_[level];
     image.Clear(image.rows(), image.cols());
     for (int row = 0; row < image.rows(); ++row) {
@@ -107,6 +113,9 @@ RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const E
   result.target_T_source = reference_T_guess;
   int iterations = 0;
   for (std::size_t level = 0; level < level_views_.size() && level < frame.levels.size(); ++level) {
+    // As RegisterFrames: the normal term's weight is given for R = 0.1 m (nicp_options.hpp).
+    const double radius_ratio = static_cast<double>(frame.levels[level].statistics_radius_m) / kNormalWeightRadiusM;
+    nicp.normal_weight = options_.nicp.normal_weight * radius_ratio * radius_ratio;
     ProjectiveCorrespondenceFinder finder(view_, level_views_[level], &level_images_[level]);
     result = Nicp(nicp).Register(view_, finder, frame.levels[level].cloud, result.target_T_source);
     iterations += result.iterations;

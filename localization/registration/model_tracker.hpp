@@ -53,6 +53,10 @@ class ModelTracker {
  public:
   // `intrinsics`: the camera's full-resolution image.
   ModelTracker(const maps::range3d::PinholeIntrinsics& intrinsics, const ModelTrackerOptions& options);
+  // `sensor`: the full-resolution projection. A pinhole camera's view is widened by
+  // options.margin; a spinning LiDAR's spherical view sees all round already and is
+  // registered at its one level (options.scales is taken as {1}).
+  ModelTracker(const maps::range3d::RangeProjection& sensor, const ModelTrackerOptions& options);
 
   // `frame.levels` matches options.scales (MakeSnicpFrame, or one FrameFromDepth level).
   // The model is seen from model_T_reference (the last tracked pose) and the frame starts
@@ -69,7 +73,8 @@ class ModelTracker {
 
   const ModelTrackerOptions options_;
   maps::range3d::SurfelModel model_;
-  maps::range3d::RangeProjection full_view_;                  // the widened full-resolution view
+  std::vector<int> scales_;                                   // of the levels registered
+  maps::range3d::RangeProjection full_view_;                  // the (widened) full-resolution view
   std::vector<maps::range3d::RangeProjection> level_views_;  // ... at each scale
   std::vector<maps::range3d::IndexImage> level_images_;
   maps::range3d::SurfelCloud view_;  // the rendered model, camera frame

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "hal/net/datagram_source.hpp"
+#include "localization/registration/model_tracker.hpp"
 #include "localization/registration/rigid_transform.hpp"
 #include "localization/tools/grid_run.hpp"
 #include "localization/tools/odometry_poses.hpp"
@@ -53,12 +54,15 @@ class RevolutionTracker {
     maps::range3d::RangeFrame current = maps::range3d::FrameFromCloud(cloud, FrameModel(model), options_.frames);
     if (result_.frames == 0) {
       Start(stamp);
+      if (options_.frame_to_model) SeedModel(current);
+    } else if (options_.frame_to_model) {
+      TrackAgainstModel(stamp, current, frame_start, load_ms);
     } else {
       Track(stamp, current, frame_start, load_ms);
     }
     Record(stamp, current);
     result_.sensor = std::string(maps::range3d::SensorModelName(current.sensor));
-    if (result_.frames == 1 || IsNewKeyframe()) {
+    if (!options_.frame_to_model && (result_.frames == 1 || IsNewKeyframe())) {
       keyframe_ = std::move(current);
       world_T_keyframe_ = world_T_sensor_;
     }
@@ -83,6 +87,41 @@ class RevolutionTracker {
     motion_ = world_T_sensor_.inverse() * world_T_current;
     motion_ns_ = stamp - previous_ns_;
     world_T_sensor_ = options_.planar ? OnThePlane(world_T_current) : world_T_current;
+  }
+
+  void SeedModel(const maps::range3d::RangeFrame& first) {
+    registration::ModelTrackerOptions tracker;
+    tracker.nicp = options_.nicp;
+    tracker.nicp.metric = options_.method == registration::RegistrationMethod::kPointToPlane
+                              ? registration::ErrorMetric::kPointToPlane
+                              : registration::ErrorMetric::kNicp;
+    tracker.iterations_per_level = options_.nicp.iterations;
+    tracker.model = options_.model;
+    model_tracker_.emplace(first.projection, tracker);
+    (void)model_tracker_->Track(SingleLevel(first), world_T_sensor_, Eigen::Isometry3d::Identity());
+  }
+
+  // Registers the revolution to the model seen from the previous pose, from the guess of its
+  // motion since, merges it and moves world_T_sensor_ there.
+  void TrackAgainstModel(TimeNs stamp, const maps::range3d::RangeFrame& current, Clock::time_point frame_start,
+                         double load_ms) {
+    const Eigen::Isometry3d guess = Guess(stamp);
+    const registration::TrackedFrame tracked = model_tracker_->Track(SingleLevel(current), world_T_sensor_, guess);
+    result_.frame_ms.push_back(MsSince(frame_start));
+    result_.registration_ms.push_back(tracked.register_ms);
+    result_.load_ms.push_back(load_ms);
+    const bool ok = tracked.merged && tracked.model_T_camera.matrix().allFinite();
+    if (!ok) ++result_.failures;
+    const Eigen::Isometry3d world_T_current = registration::Orthonormalized(ok ? tracked.model_T_camera : world_T_sensor_ * guess);
+    motion_ = world_T_sensor_.inverse() * world_T_current;
+    motion_ns_ = stamp - previous_ns_;
+    world_T_sensor_ = options_.planar ? OnThePlane(world_T_current) : world_T_current;
+  }
+
+  static registration::SnicpFrame SingleLevel(const maps::range3d::RangeFrame& frame) {
+    registration::SnicpFrame levels;
+    levels.levels.push_back(frame);
+    return levels;
   }
 
   // The sensor where the vehicle would be on the ground plane: height, roll and pitch zero.
@@ -184,6 +223,7 @@ class RevolutionTracker {
   Eigen::Isometry3d motion_ = Eigen::Isometry3d::Identity();  // previous_T_current of the last pair
   TimeNs motion_ns_ = 0;                                       // ... and the time it took
   maps::range3d::RangeFrame keyframe_;  // the revolution the next one registers to
+  std::optional<registration::ModelTracker> model_tracker_;  // frame to model instead
   Eigen::Isometry3d world_T_keyframe_ = Eigen::Isometry3d::Identity();
   TimeNs previous_ns_ = 0;
 };

@@ -30,6 +30,7 @@
 #include "maps/grid/grid_accumulator.hpp"
 #include "maps/grid/structure_grid_options.pb.h"
 #include "maps/range3d/range_frame.hpp"
+#include "maps/range3d/surfel_model.hpp"
 
 namespace flat2d::localization::tools {
 
@@ -60,6 +61,11 @@ struct NicpDriveOptions {
   // drift from 0.20 % to 0.009 % of the distance, 0.5 m to 0.021 %.
   double keyframe_distance_m = 1.0;
   double keyframe_angle_rad = 0.1;
+  // Instead of keyframes: each revolution registered to the merged model of the ones before
+  // (registration/model_tracker.hpp, thesis 5.1.4) and merged into it; the model keeps the
+  // latest max_points points, a local map that follows the vehicle.
+  bool frame_to_model = false;
+  maps::range3d::SurfelModelOptions model{0.05F, 0.01F, 0.5F, 50.0F, 1'000'000, 0.02F, 1e-3F};
   // Keep the vehicle on the ground plane after every registration (height, roll and pitch
   // zero): flat2d's ground vehicles on flat ground. Without it a pitch bias of a few tenths
   // of a degree climbs tens of metres over a kilometre.

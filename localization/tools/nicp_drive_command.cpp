@@ -43,6 +43,9 @@ first pose).
                         register each revolution to the last keyframe, a revolution kept
                         until the sensor is M metres or RAD radians from it (default 1, 0.1;
                         0, 0: revolution to revolution)
+  --tracking model      register each revolution to the merged model of the ones before
+                        and merge it (thesis 5.1.4; the latest 1 M points kept) instead
+                        of keyframes
   --no-deskew           take each revolution as measured from one place
   --planar              keep the vehicle on the ground plane after every registration
                         (height, roll and pitch zero): flat ground
@@ -56,7 +59,7 @@ first pose).
                         registration), registration_ms_p50, load_ms_p50 (the deskewed
                         cloud), model_points, method, sensor, deskew, guess,
                         guesses_without_odometry, grid_seconds, viewpoints,
-                        tracked_distance_m, tracking (keyframe or frame); with --anchor distance_m, drift_percent,
+                        tracked_distance_m, tracking (keyframe, frame or model); with --anchor distance_m, drift_percent,
                         end_error_m, max_error_m, end_heading_error_deg (and odometry_*)
 )";
 
@@ -94,7 +97,10 @@ Args ParseArgs(int argc, char** argv) {
       a.options.method = *method;
     } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
     else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
-    else if (arg == "--no-deskew") a.options.deskew = false;
+    else if (arg == "--tracking") {
+      if (std::string_view(value()) != "model") Fail(1, "build --mode nicp DRIVE: --tracking is model (or keyframes by default)");
+      a.options.frame_to_model = true;
+    } else if (arg == "--no-deskew") a.options.deskew = false;
     else if (arg == "--planar") a.options.planar = true;
     else if (arg == "--keyframe-distance") a.options.keyframe_distance_m = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--keyframe-angle") a.options.keyframe_angle_rad = maps::cli::ParseNumber(kTool, arg, value());
@@ -224,7 +230,9 @@ int NicpDriveCommand(int argc, char** argv) {
               std::string(registration::MethodName(a.options.method)).c_str(), r.sensor.c_str(),
               a.options.deskew ? "true" : "false", a.options.can_log ? "can" : "constant-velocity",
               r.guesses_without_odometry, r.grid_seconds, viewpoints, PathLength(r.trajectory),
-              a.options.keyframe_distance_m > 0.0 || a.options.keyframe_angle_rad > 0.0 ? "keyframe" : "frame");
+              a.options.frame_to_model                                                    ? "model"
+              : a.options.keyframe_distance_m > 0.0 || a.options.keyframe_angle_rad > 0.0 ? "keyframe"
+                                                                                          : "frame");
   if (!a.options.anchor.empty()) {
     const Drift nicp = DriftAgainst(a.options.anchor, r.trajectory);
     std::printf(", \"distance_m\": %.3f", nicp.distance_m);
