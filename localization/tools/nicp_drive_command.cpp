@@ -22,8 +22,8 @@ namespace flat2d::localization::tools {
 const char* const kNicpDriveUsage = R"(
 build --mode nicp DRIVE --out DIR: a Velodyne capture (.pcap, .pcapng), each complete
 revolution deskewed, made an organized range frame (spherical projection of the identified
-model, statistics over R = 0.3 m) and tracked by NICP against the last keyframe revolution
-(a new one every metre or 0.1 rad). Writes DIR/trajectory.tum (world_T_vehicle at each
+model, statistics over R = 0.3 m) and tracked by NICP against the merged model of the
+revolutions before (or the last keyframe revolution, a new one every metre or 0.1 rad). Writes DIR/trajectory.tum (world_T_vehicle at each
 revolution's first fan), DIR/model.ply (points and normals of every 10th revolution, every
 16th point), DIR/map.f2m (the 2D prior map: the capture gridded at the tracked poses) and
 DIR/map.png; with a CAN log also DIR/odometry.tum (the CAN odometry open loop from the same
@@ -40,12 +40,12 @@ first pose).
   --iterations N        (default 10)
   --max-frames N        only the first N complete revolutions
   --keyframe-distance M --keyframe-angle RAD
-                        register each revolution to the last keyframe, a revolution kept
-                        until the sensor is M metres or RAD radians from it (default 1, 0.1;
-                        0, 0: revolution to revolution)
-  --tracking model      register each revolution to the merged model of the ones before
-                        and merge it (thesis 5.1.4; the latest 1 M points kept) instead
-                        of keyframes
+                        with --tracking keyframe: a keyframe is kept until the sensor is M
+                        metres or RAD radians from it (default 1, 0.1; 0, 0: revolution to
+                        revolution)
+  --tracking T          model (default): register each revolution to the merged model of
+                        the ones before and merge it (thesis 5.1.4; the latest 1 M points
+                        kept); keyframe: register it to the last keyframe revolution
   --no-deskew           take each revolution as measured from one place
   --planar              keep the vehicle on the ground plane after every registration
                         (height, roll and pitch zero): flat ground
@@ -98,8 +98,9 @@ Args ParseArgs(int argc, char** argv) {
     } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
     else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
     else if (arg == "--tracking") {
-      if (std::string_view(value()) != "model") Fail(1, "build --mode nicp DRIVE: --tracking is model (or keyframes by default)");
-      a.options.frame_to_model = true;
+      const std::string_view tracking = value();
+      if (tracking != "model" && tracking != "keyframe") Fail(1, "build --mode nicp DRIVE: --tracking is model or keyframe");
+      a.options.frame_to_model = tracking == "model";
     } else if (arg == "--no-deskew") a.options.deskew = false;
     else if (arg == "--planar") a.options.planar = true;
     else if (arg == "--keyframe-distance") a.options.keyframe_distance_m = maps::cli::ParseNumber(kTool, arg, value());
