@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/testing/pose_error.hpp"
+
 #include "hal/trajectory/transform_file.hpp"
 #include "tests/testing/data_path.hpp"
 
@@ -19,16 +21,6 @@ namespace flat2d::localization::peers {
 namespace {
 
 constexpr const char* kPair = "lidar3d/hdl32e_fast_gicp_pair/";
-
-struct Errors {
-  double translation_m;
-  double rotation_deg;
-};
-
-Errors ErrorOf(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth) {
-  const Eigen::Isometry3d error = truth.inverse() * estimate;
-  return {error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI};
-}
 
 int ThreadsOfThisProcess() {
   int threads = 0;
@@ -59,8 +51,8 @@ TEST_P(PeerRegistration, Hdl32ePairFromIdentityAgreesWithFastGicp) {
 
   const auto result = RegisterPeer(*target, *source, Eigen::Isometry3d::Identity(), Options(GetParam()));
   ASSERT_TRUE(result.ok()) << result.error().message;
-  const Errors start = ErrorOf(Eigen::Isometry3d::Identity(), *reference);
-  const Errors e = ErrorOf(result->target_T_source, *reference);
+  const testing::PoseError start = testing::PoseErrorOf(Eigen::Isometry3d::Identity(), *reference);
+  const testing::PoseError e = testing::PoseErrorOf(result->target_T_source, *reference);
   std::printf("%s: from %.3f m %.3f deg to %.4f m %.3f deg of fast_gicp; %d iterations, %d of %zu inliers, "
               "%.1f ms\n", std::string(PeerMethodName(GetParam())).c_str(), start.translation_m, start.rotation_deg,
               e.translation_m, e.rotation_deg, result->iterations, result->inliers, result->source_points,
@@ -88,7 +80,7 @@ TEST_P(PeerRegistration, RecoversAKnownMotionOfTheScanAndItsInverse) {
     for (const Eigen::Vector3f& p : *target) source.push_back((truth.inverse() * p.cast<double>()).cast<float>());
     const auto result = RegisterPeer(*target, source, Eigen::Isometry3d::Identity(), Options(GetParam()));
     ASSERT_TRUE(result.ok()) << result.error().message;
-    const Errors e = ErrorOf(result->target_T_source, truth);
+    const testing::PoseError e = testing::PoseErrorOf(result->target_T_source, truth);
     std::printf("%s: %.2f mm %.4f deg from the known motion\n", std::string(PeerMethodName(GetParam())).c_str(),
                 1e3 * e.translation_m, e.rotation_deg);
     // The voxel grids of the moved and the unmoved scan differ, so the optimum is not

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/testing/pose_error.hpp"
+
 #include "tests/testing/box_scene.hpp"
 
 namespace flat2d::localization::registration {
@@ -23,16 +25,6 @@ Eigen::Isometry3f CameraAt(int k) {
                   Eigen::AngleAxisf(0.3F, Eigen::Vector3f::UnitY()).toRotationMatrix();
   pose.translation() = Eigen::Vector3f(-1.5F + 0.02F * t, 0.3F - 0.01F * t, 1.4F);
   return pose;
-}
-
-struct Errors {
-  double translation_m;
-  double rotation_deg;
-};
-
-Errors ErrorOf(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth) {
-  const Eigen::Isometry3d error = truth.inverse() * estimate;
-  return {error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI};
 }
 
 SnicpFrame FrameAt(int k, std::mt19937& noise) {
@@ -56,7 +48,7 @@ TEST(ModelTracker, TracksADriftFreeCameraThroughTheMergedModel) {
     motion = model_T_camera.inverse() * tracked.model_T_camera;
     model_T_camera = tracked.model_T_camera;
     if (k == 0) first_frame_points = tracker.model().size();
-    const Errors e = ErrorOf(model_T_camera, world_T_first.inverse() * CameraAt(k).cast<double>());
+    const testing::PoseError e = testing::PoseErrorOf(model_T_camera, world_T_first.inverse() * CameraAt(k).cast<double>());
     std::printf("frame %d: %.2f mm %.3f deg, model %zu points (%zu merged, %zu replaced)\n", k, 1e3 * e.translation_m,
                 e.rotation_deg, tracker.model().size(), tracked.merge.merged, tracked.merge.replaced);
     EXPECT_LT(e.translation_m, 0.001) << "frame " << k;
@@ -101,7 +93,7 @@ TEST(ModelTracker, NicpWithOneLevelTracksToo) {
     ASSERT_TRUE(tracked.merged) << "frame " << k;
     model_T_camera = tracked.model_T_camera;
   }
-  const Errors e = ErrorOf(model_T_camera, CameraAt(0).cast<double>().inverse() * CameraAt(9).cast<double>());
+  const testing::PoseError e = testing::PoseErrorOf(model_T_camera, CameraAt(0).cast<double>().inverse() * CameraAt(9).cast<double>());
   std::printf("nicp after 3 steps of 6 cm / 3.4 deg: %.2f mm %.3f deg\n", 1e3 * e.translation_m, e.rotation_deg);
   EXPECT_LT(e.translation_m, 0.001);
   EXPECT_LT(e.rotation_deg, 0.02);

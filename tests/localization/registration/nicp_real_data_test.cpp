@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/testing/pose_error.hpp"
+
 #include "hal/cloud/tum_depth_png.hpp"
 #include "hal/trajectory/transform_file.hpp"
 #include "hal/trajectory/tum_file.hpp"
@@ -23,16 +25,6 @@ namespace {
 
 using maps::range3d::RangeFrame;
 using maps::range3d::RangeFrameOptions;
-
-struct Errors {
-  double translation_m;
-  double rotation_deg;
-};
-
-Errors ErrorOf(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth) {
-  const Eigen::Isometry3d error = truth.inverse() * estimate;
-  return {error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI};
-}
 
 RangeFrame LoadOrDie(const std::filesystem::path& path, const RangeFrameOptions& options = {}) {
   auto frame = maps::range3d::LoadRangeFrame(path, options);
@@ -56,7 +48,7 @@ TEST(NicpRealData, Hdl32ePairFromIdentityLandsOnBothReferences) {
   ASSERT_TRUE(r.result.ok());
   // The two references disagree by 1.9 cm / 0.23 deg (PROVENANCE.md): 3 cm / 0.3 deg of each.
   for (const char* reference : {"relative_fast_gicp.txt", "T_target_source_small_gicp.txt"}) {
-    const Errors e = ErrorOf(r.result.target_T_source, TransformOrDie(folder / reference));
+    const testing::PoseError e = testing::PoseErrorOf(r.result.target_T_source, TransformOrDie(folder / reference));
     std::printf("%s: %.4f m %.3f deg\n", reference, e.translation_m, e.rotation_deg);
     EXPECT_LT(e.translation_m, 0.03) << reference;
     EXPECT_LT(e.rotation_deg, 0.3) << reference;
@@ -78,7 +70,7 @@ TEST(NicpRealData, StaticVlp16SweepsRegisterToIdentity) {
     const FrameRegistration r =
         RegisterFrames(target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, NicpOptions{});
     ASSERT_TRUE(r.result.ok());
-    const Errors e = ErrorOf(r.result.target_T_source, Eigen::Isometry3d::Identity());
+    const testing::PoseError e = testing::PoseErrorOf(r.result.target_T_source, Eigen::Isometry3d::Identity());
     std::printf("sweeps %zu-%zu: %.4f m %.3f deg\n", k, k + 1, e.translation_m, e.rotation_deg);
     EXPECT_LT(e.translation_m, 0.01);
     EXPECT_LT(e.rotation_deg, 0.1);
@@ -118,7 +110,7 @@ TEST(NicpRealData, KittiPairsTwelveToFifteenMatchTheTruth) {
         RegisterFrames(target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, options);
     ASSERT_TRUE(r.result.ok());
     const Eigen::Isometry3d truth = world_T_velo[static_cast<std::size_t>(i)].inverse() * world_T_velo[static_cast<std::size_t>(i + 1)];
-    const Errors e = ErrorOf(r.result.target_T_source, truth);
+    const testing::PoseError e = testing::PoseErrorOf(r.result.target_T_source, truth);
     std::printf("pair %d-%d: %.3f m %.3f deg (truth step %.3f m)\n", i, i + 1, e.translation_m, e.rotation_deg,
                 truth.translation().norm());
     EXPECT_LT(e.translation_m, 0.05);
@@ -176,8 +168,8 @@ TEST(NicpRealData, BunnyScansLandOnTheirAlignment) {
     ASSERT_TRUE(r.result.ok());
     EXPECT_TRUE(r.kdtree);
     const Eigen::Isometry3d truth = world_T_scan.at(pair.target).inverse() * world_T_scan.at(pair.source);
-    const Errors e = ErrorOf(r.result.target_T_source, truth);
-    const Errors start = ErrorOf(guess, truth);
+    const testing::PoseError e = testing::PoseErrorOf(r.result.target_T_source, truth);
+    const testing::PoseError start = testing::PoseErrorOf(guess, truth);
     std::printf("%s-%s: from %.1f mm %.2f deg to %.2f mm %.3f deg\n", pair.target, pair.source,
                 1e3 * start.translation_m, start.rotation_deg, 1e3 * e.translation_m, e.rotation_deg);
     EXPECT_LT(e.translation_m, 0.001) << pair.source;
@@ -213,8 +205,8 @@ TEST(NicpRealData, TumDepthPairsMatchTheMotionCapture) {
         RegisterFrames(target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, NicpOptions{});
     ASSERT_TRUE(r.result.ok());
     const Eigen::Isometry3d motion = TruthAt(*truth, (*frames)[k].time_s).inverse() * TruthAt(*truth, (*frames)[k + 1].time_s);
-    const Errors e = ErrorOf(r.result.target_T_source, motion);
-    const Errors start = ErrorOf(Eigen::Isometry3d::Identity(), motion);
+    const testing::PoseError e = testing::PoseErrorOf(r.result.target_T_source, motion);
+    const testing::PoseError start = testing::PoseErrorOf(Eigen::Isometry3d::Identity(), motion);
     std::printf("frames %zu-%zu: motion %.1f mm %.2f deg, error %.1f mm %.3f deg\n", k, k + 1,
                 1e3 * start.translation_m, start.rotation_deg, 1e3 * e.translation_m, e.rotation_deg);
     EXPECT_LT(e.translation_m, 0.03);

@@ -9,6 +9,8 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include "tests/testing/pose_error.hpp"
+
 #include "maps/range3d/depth_cloud.hpp"
 #include "maps/range3d/neighbour_statistics.hpp"
 #include "maps/range3d/surface_statistics.hpp"
@@ -50,16 +52,6 @@ SurfelCloud DepthFrame(const Eigen::Isometry3f& world_T_camera, const RangeProje
   return cloud;
 }
 
-struct Errors {
-  double translation_m;
-  double rotation_deg;
-};
-
-Errors ErrorOf(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth) {
-  const Eigen::Isometry3d error = truth.inverse() * estimate;
-  return {error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI};
-}
-
 class NicpOnDepthFrames : public ::testing::TestWithParam<ErrorMetric> {};
 
 TEST_P(NicpOnDepthFrames, RecoversSeededMotionsFromIdentity) {
@@ -77,7 +69,7 @@ TEST_P(NicpOnDepthFrames, RecoversSeededMotionsFromIdentity) {
     const SurfelCloud source = DepthFrame(world_T_target * target_T_source, projection);
     const RegistrationResult result = nicp.Register(target, finder, source, Eigen::Isometry3d::Identity());
     ASSERT_TRUE(result.ok()) << FailureName(result.failure);
-    const Errors e = ErrorOf(result.target_T_source, target_T_source.cast<double>());
+    const testing::PoseError e = testing::PoseErrorOf(result.target_T_source, target_T_source.cast<double>());
     std::printf("trial %d: %.2f mm %.3f deg, %d inliers, %d iterations\n", trial, 1e3 * e.translation_m,
                 e.rotation_deg, result.inliers, result.iterations);
     EXPECT_LT(e.translation_m, 0.003) << "trial " << trial;
@@ -108,7 +100,7 @@ TEST(Snicp, RecoversSeededMotionsThroughThePyramid) {
     ASSERT_TRUE(r.result.ok()) << FailureName(r.result.failure);
     EXPECT_LE(r.result.iterations, 9);  // 3 a level, fewer where a level converges
     EXPECT_GE(r.result.iterations, 3);
-    const Errors e = ErrorOf(r.result.target_T_source, target_T_source.cast<double>());
+    const testing::PoseError e = testing::PoseErrorOf(r.result.target_T_source, target_T_source.cast<double>());
     std::printf("snicp trial %d: %.2f mm %.3f deg\n", trial, 1e3 * e.translation_m, e.rotation_deg);
     EXPECT_LT(e.translation_m, 0.003) << "trial " << trial;
     EXPECT_LT(e.rotation_deg, 0.1) << "trial " << trial;
@@ -121,7 +113,7 @@ TEST(Nicp, IdenticalFramesStayAtIdentityAndReportInformation) {
   ProjectiveCorrespondenceFinder finder(frame, projection);
   const RegistrationResult result = Nicp(NicpOptions{}).Register(frame, finder, frame, Eigen::Isometry3d::Identity());
   ASSERT_TRUE(result.ok());
-  const Errors e = ErrorOf(result.target_T_source, Eigen::Isometry3d::Identity());
+  const testing::PoseError e = testing::PoseErrorOf(result.target_T_source, Eigen::Isometry3d::Identity());
   EXPECT_LT(e.translation_m, 1e-5);
   EXPECT_LT(e.rotation_deg, 1e-3);
   EXPECT_TRUE(result.converged);
@@ -161,7 +153,7 @@ TEST(Nicp, KdTreeModeAlignsUnorganizedClouds) {
   KdTreeCorrespondenceFinder finder(target, options.kdtree_alpha);
   const RegistrationResult result = Nicp(options).Register(target, finder, source, Eigen::Isometry3d::Identity());
   ASSERT_TRUE(result.ok());
-  const Errors e = ErrorOf(result.target_T_source, target_T_source.cast<double>());
+  const testing::PoseError e = testing::PoseErrorOf(result.target_T_source, target_T_source.cast<double>());
   std::printf("kd-tree: %.2f mm %.3f deg, %d iterations\n", 1e3 * e.translation_m, e.rotation_deg, result.iterations);
   EXPECT_LT(e.translation_m, 0.01);
   EXPECT_LT(e.rotation_deg, 0.3);
