@@ -3,6 +3,7 @@
 // name (e.g. ns_past_hour).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 
 namespace flat2d {
@@ -13,5 +14,10 @@ inline constexpr TimeNs kNsPerUs = 1'000;
 inline constexpr TimeNs kNsPerMs = 1'000'000;
 inline constexpr TimeNs kNsPerSecond = 1'000'000'000;
 inline constexpr TimeNs kNsPerHour = 3600 * kNsPerSecond;
+
+// Wall time since `start` in milliseconds, for the stage times tools report.
+inline double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 
 }  // namespace flat2d

@@ -34,10 +34,14 @@ std::optional<RegistrationMethod> ParseMethod(std::string_view name) {
   return std::nullopt;
 }
 
+ErrorMetric MetricOf(RegistrationMethod method) {
+  return method == RegistrationMethod::kPointToPlane ? ErrorMetric::kPointToPlane : ErrorMetric::kNicp;
+}
+
 FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const maps::range3d::RangeFrame& source,
                                  const Eigen::Isometry3d& guess, RegistrationMethod method, NicpOptions options,
                                  CorrespondenceMode mode) {
-  options.metric = method == RegistrationMethod::kPointToPlane ? ErrorMetric::kPointToPlane : ErrorMetric::kNicp;
+  options.metric = MetricOf(method);
   const double radius_ratio = static_cast<double>(target.statistics_radius_m) / kNormalWeightRadiusM;
   options.normal_weight *= radius_ratio * radius_ratio;
   const auto start = std::chrono::steady_clock::now();

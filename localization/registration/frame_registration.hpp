@@ -18,6 +18,8 @@ enum class RegistrationMethod { kNicp, kPointToPlane };
 
 std::string_view MethodName(RegistrationMethod method);
 std::optional<RegistrationMethod> ParseMethod(std::string_view name);
+// The error a method minimizes: point-to-plane is NICP with Omega^n = 0.
+ErrorMetric MetricOf(RegistrationMethod method);
 
 enum class CorrespondenceMode { kAuto, kProjective, kKdTree };
 

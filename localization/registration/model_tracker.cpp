@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "hal/common/time.hpp"
 #include "localization/registration/correspondence_finder.hpp"
 #include "localization/registration/nicp.hpp"
 #include "localization/registration/rigid_transform.hpp"
@@ -15,7 +16,6 @@ using Clock = std::chrono::steady_clock;
 using maps::range3d::PinholeIntrinsics;
 using maps::range3d::RangeProjection;
 
-double MsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
 // The camera's intrinsics with `margin` of extra image on each side, rounded to whole
 // pixels of the coarsest level so every level keeps the same principal point.
@@ -72,10 +72,10 @@ TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3
   if (model_.size() > 0) {
     Clock::time_point start = Clock::now();
     RenderReference(model_T_reference.cast<float>());
-    tracked.render_ms = MsSince(start);
+    tracked.render_ms = MillisecondsSince(start);
     start = Clock::now();
     tracked.result = RegisterLevels(frame, reference_T_guess);
-    tracked.register_ms = MsSince(start);
+    tracked.register_ms = MillisecondsSince(start);
     if (tracked.result.ok() && tracked.result.inliers < options_.min_inlier_share * PointsWithNormals(frame)) {
       tracked.result.failure = RegistrationFailure::kTooFewCorrespondences;
     }
@@ -86,7 +86,7 @@ TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3
   const maps::range3d::RangeFrame& full = frame.levels.back();
   tracked.merge = model_.Merge(full.cloud, full.image, full.projection, tracked.model_T_camera.cast<float>());
   tracked.merged = true;
-  tracked.merge_ms = MsSince(start);
+  tracked.merge_ms = MillisecondsSince(start);
   return tracked;
 }
 

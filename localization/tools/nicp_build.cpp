@@ -14,8 +14,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double MsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
-
 hal::trajectory::StampedPose PoseAt(double time_s, const Eigen::Isometry3d& world_T_camera) {
   return {static_cast<TimeNs>(std::llround(time_s * 1e9)), world_T_camera};
 }
@@ -42,9 +40,7 @@ registration::SnicpFrame PrepareFrame(const hal::cloud::DepthImage& depth, const
 registration::ModelTrackerOptions TrackerOptions(const NicpBuildOptions& options, const registration::SnicpOptions& snicp) {
   registration::ModelTrackerOptions tracker;
   tracker.nicp = options.nicp;
-  tracker.nicp.metric = options.method == registration::RegistrationMethod::kPointToPlane
-                            ? registration::ErrorMetric::kPointToPlane
-                            : registration::ErrorMetric::kNicp;
+  tracker.nicp.metric = registration::MetricOf(options.method);
   tracker.model = options.model;
   if (options.snicp) {
     tracker.scales = snicp.scales;
@@ -97,7 +93,7 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
     const Clock::time_point load_start = Clock::now();
     auto depth = hal::cloud::ReadTumDepthPng(entry.file, options.frames.depth_scale);
     if (!depth.ok()) return depth.error();
-    const double load_ms = MsSince(load_start);
+    const double load_ms = MillisecondsSince(load_start);
     const Clock::time_point frame_start = Clock::now();
     registration::SnicpFrame frame = PrepareFrame(*depth, options, snicp);
     const Eigen::Isometry3d guess = k > 0 && options.constant_velocity ? motion : Eigen::Isometry3d::Identity();
@@ -117,7 +113,7 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
       motion = ok ? r.result.target_T_source : guess;
     }
     if (k > 0) {
-      summary.frame_ms.push_back(MsSince(frame_start));
+      summary.frame_ms.push_back(MillisecondsSince(frame_start));
       summary.registration_ms.push_back(registration_ms);
       summary.load_ms.push_back(load_ms);
       summary.failures += ok ? 0 : 1;

@@ -19,15 +19,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double MsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
-
-Eigen::Isometry3d Lift(const Eigen::Isometry2d& pose) {
-  Eigen::Isometry3d lifted = Eigen::Isometry3d::Identity();
-  lifted.linear().topLeftCorner<2, 2>() = pose.linear();
-  lifted.translation().head<2>() = pose.translation();
-  return lifted;
-}
-
 maps::range3d::SensorModel FrameModel(hal::velodyne::Model model) {
   switch (model) {
     case hal::velodyne::Model::kVlp16: return maps::range3d::SensorModel::kVlp16;
@@ -49,79 +40,72 @@ class RevolutionTracker {
     const Clock::time_point load_start = Clock::now();
     hal::cloud::PointCloud cloud = RevolutionCloud(revolution, Deskewing(stamp));
     if (options_.ground_clearance_m >= 0.0) RemoveGround(cloud);
-    const double load_ms = MsSince(load_start);
+    const double load_ms = MillisecondsSince(load_start);
     const Clock::time_point frame_start = Clock::now();
-    maps::range3d::RangeFrame current = maps::range3d::FrameFromCloud(cloud, FrameModel(model), options_.frames);
+    registration::SnicpFrame frame;  // one level: the model tracker's input, kept as it is
+    frame.levels.push_back(maps::range3d::FrameFromCloud(cloud, FrameModel(model), options_.frames));
+    const maps::range3d::RangeFrame& current = frame.levels.front();
     if (result_.frames == 0) {
       Start(stamp);
-      if (options_.frame_to_model) SeedModel(current);
-    } else if (options_.frame_to_model) {
-      TrackAgainstModel(stamp, current, frame_start, load_ms);
+      if (options_.frame_to_model) SeedModel(frame);
     } else {
-      Track(stamp, current, frame_start, load_ms);
+      const Eigen::Isometry3d guess = Guess(stamp);
+      const Registration r = options_.frame_to_model ? AgainstModel(frame, guess) : AgainstKeyframe(current, guess);
+      result_.frame_ms.push_back(MillisecondsSince(frame_start));
+      result_.registration_ms.push_back(r.ms);
+      result_.load_ms.push_back(load_ms);
+      MoveTo(stamp, r.ok ? r.world_T_sensor : world_T_sensor_ * guess, r.ok);
     }
     Record(stamp, current);
     result_.sensor = std::string(maps::range3d::SensorModelName(current.sensor));
     if (!options_.frame_to_model && (result_.frames == 1 || IsNewKeyframe())) {
-      keyframe_ = std::move(current);
+      keyframe_ = std::move(frame.levels.front());
       world_T_keyframe_ = world_T_sensor_;
     }
     previous_ns_ = stamp;
   }
 
  private:
-  // Registers the revolution to the keyframe, from the guess of its motion since the
-  // previous revolution, and moves world_T_sensor_ there.
-  void Track(TimeNs stamp, const maps::range3d::RangeFrame& current, Clock::time_point frame_start, double load_ms) {
+  struct Registration {
+    bool ok = false;  // a failure, or a result that is not finite (nothing downstream survives a NaN)
+    Eigen::Isometry3d world_T_sensor = Eigen::Isometry3d::Identity();
+    double ms = 0.0;  // the registration alone
+  };
+
+  // The revolution registered to the keyframe, from the guess of its motion since the
+  // previous revolution.
+  Registration AgainstKeyframe(const maps::range3d::RangeFrame& current, const Eigen::Isometry3d& guess) const {
     const Eigen::Isometry3d keyframe_T_previous = world_T_keyframe_.inverse() * world_T_sensor_;
-    const Eigen::Isometry3d guess = keyframe_T_previous * Guess(stamp);
     const registration::FrameRegistration r =
-        registration::RegisterFrames(keyframe_, current, guess, options_.method, options_.nicp);
-    result_.frame_ms.push_back(MsSince(frame_start));
-    result_.registration_ms.push_back(1e3 * r.seconds);
-    result_.load_ms.push_back(load_ms);
-    // A result that is not finite is a failure too (nothing downstream survives a NaN).
-    const bool ok = r.result.ok() && r.result.target_T_source.matrix().allFinite();
-    if (!ok) ++result_.failures;
-    const Eigen::Isometry3d world_T_current = registration::Orthonormalized(world_T_keyframe_ * (ok ? r.result.target_T_source : guess));
-    motion_ = world_T_sensor_.inverse() * world_T_current;
-    motion_ns_ = stamp - previous_ns_;
-    world_T_sensor_ = options_.planar ? OnThePlane(world_T_current) : world_T_current;
+        registration::RegisterFrames(keyframe_, current, keyframe_T_previous * guess, options_.method, options_.nicp);
+    return {r.result.ok() && r.result.target_T_source.matrix().allFinite(), world_T_keyframe_ * r.result.target_T_source,
+            1e3 * r.seconds};
   }
 
-  void SeedModel(const maps::range3d::RangeFrame& first) {
+  // The revolution registered to the model seen from the previous pose, from the guess, and
+  // merged into it.
+  Registration AgainstModel(const registration::SnicpFrame& frame, const Eigen::Isometry3d& guess) {
+    const registration::TrackedFrame tracked = model_tracker_->Track(frame, world_T_sensor_, guess);
+    return {tracked.merged && tracked.model_T_camera.matrix().allFinite(), tracked.model_T_camera, tracked.register_ms};
+  }
+
+  // Moves world_T_sensor_ to the revolution's pose (the guess's where registration failed).
+  void MoveTo(TimeNs stamp, const Eigen::Isometry3d& world_T_current, bool registered) {
+    if (!registered) ++result_.failures;
+    const Eigen::Isometry3d rigid = registration::Orthonormalized(world_T_current);
+    motion_ = world_T_sensor_.inverse() * rigid;
+    motion_ns_ = stamp - previous_ns_;
+    world_T_sensor_ = options_.planar ? OnThePlane(rigid) : rigid;
+  }
+
+  void SeedModel(const registration::SnicpFrame& first) {
     registration::ModelTrackerOptions tracker;
     tracker.nicp = options_.nicp;
-    tracker.nicp.metric = options_.method == registration::RegistrationMethod::kPointToPlane
-                              ? registration::ErrorMetric::kPointToPlane
-                              : registration::ErrorMetric::kNicp;
+    tracker.nicp.metric = registration::MetricOf(options_.method);
     tracker.iterations_per_level = options_.nicp.iterations;
     tracker.model = options_.model;
-    model_tracker_.emplace(first.projection, tracker);
-    (void)model_tracker_->Track(SingleLevel(first), world_T_sensor_, Eigen::Isometry3d::Identity());
-  }
-
-  // Registers the revolution to the model seen from the previous pose, from the guess of its
-  // motion since, merges it and moves world_T_sensor_ there.
-  void TrackAgainstModel(TimeNs stamp, const maps::range3d::RangeFrame& current, Clock::time_point frame_start,
-                         double load_ms) {
-    const Eigen::Isometry3d guess = Guess(stamp);
-    const registration::TrackedFrame tracked = model_tracker_->Track(SingleLevel(current), world_T_sensor_, guess);
-    result_.frame_ms.push_back(MsSince(frame_start));
-    result_.registration_ms.push_back(tracked.register_ms);
-    result_.load_ms.push_back(load_ms);
-    const bool ok = tracked.merged && tracked.model_T_camera.matrix().allFinite();
-    if (!ok) ++result_.failures;
-    const Eigen::Isometry3d world_T_current = registration::Orthonormalized(ok ? tracked.model_T_camera : world_T_sensor_ * guess);
-    motion_ = world_T_sensor_.inverse() * world_T_current;
-    motion_ns_ = stamp - previous_ns_;
-    world_T_sensor_ = options_.planar ? OnThePlane(world_T_current) : world_T_current;
-  }
-
-  static registration::SnicpFrame SingleLevel(const maps::range3d::RangeFrame& frame) {
-    registration::SnicpFrame levels;
-    levels.levels.push_back(frame);
-    return levels;
+    model_tracker_.emplace(first.levels.front().projection, tracker);
+    (void)model_tracker_->Track(first, world_T_sensor_, Eigen::Isometry3d::Identity());
   }
 
   // The sensor where the vehicle would be on the ground plane: height, roll and pitch zero.
@@ -129,7 +113,7 @@ class RevolutionTracker {
     const Eigen::Isometry3d world_T_vehicle = world_T_sensor * vehicle_T_sensor_.inverse();
     const maps::StampedPose2d flat = maps::Flatten(0, world_T_vehicle);
     const Eigen::Isometry2d planar = Eigen::Translation2d(flat.position) * Eigen::Rotation2Dd(flat.yaw);
-    return Lift(planar) * vehicle_T_sensor_;
+    return maps::Lift(planar) * vehicle_T_sensor_;
   }
 
   // The keyframe is left once the sensor is keyframe_distance_m or keyframe_angle_rad from it.
@@ -145,7 +129,7 @@ class RevolutionTracker {
     if (odometry_ == nullptr) return std::nullopt;
     const auto from = odometry_->PoseAt(t0), to = odometry_->PoseAt(t);
     if (!from || !to) return std::nullopt;
-    return vehicle_T_sensor_.inverse() * Lift(from->inverse() * *to) * vehicle_T_sensor_;
+    return vehicle_T_sensor_.inverse() * maps::Lift(from->inverse() * *to) * vehicle_T_sensor_;
   }
 
   // The previous motion, scaled to the time from t0 to t.
@@ -185,13 +169,13 @@ class RevolutionTracker {
     Eigen::Isometry3d world_T_vehicle = Eigen::Isometry3d::Identity();
     Se2 anchor;
     if (!options_.anchor.empty() && evaluation::PoseAt(options_.anchor, time_s, 1.0, anchor)) {
-      world_T_vehicle = Lift(Eigen::Isometry2d(Eigen::Translation2d(anchor.translation()) * Eigen::Rotation2Dd(anchor.theta())));
+      world_T_vehicle = maps::Lift(Eigen::Isometry2d(Eigen::Translation2d(anchor.translation()) * Eigen::Rotation2Dd(anchor.theta())));
     } else if (odometry_ != nullptr) {
-      if (auto pose = odometry_->PoseAt(stamp)) world_T_vehicle = Lift(*pose);
+      if (auto pose = odometry_->PoseAt(stamp)) world_T_vehicle = maps::Lift(*pose);
     }
     world_T_sensor_ = world_T_vehicle * vehicle_T_sensor_;
     if (odometry_ != nullptr) {
-      if (auto pose = odometry_->PoseAt(stamp)) world_T_odometry_ = world_T_vehicle * Lift(*pose).inverse();
+      if (auto pose = odometry_->PoseAt(stamp)) world_T_odometry_ = world_T_vehicle * maps::Lift(*pose).inverse();
     }
   }
 
@@ -199,7 +183,7 @@ class RevolutionTracker {
     const Eigen::Isometry3d world_T_vehicle = world_T_sensor_ * vehicle_T_sensor_.inverse();
     result_.trajectory.push_back({stamp, world_T_vehicle});
     if (world_T_odometry_) {
-      if (auto pose = odometry_->PoseAt(stamp)) result_.odometry.push_back({stamp, *world_T_odometry_ * Lift(*pose)});
+      if (auto pose = odometry_->PoseAt(stamp)) result_.odometry.push_back({stamp, *world_T_odometry_ * maps::Lift(*pose)});
     }
     if (options_.model_every > 0 && result_.frames % options_.model_every == 0) AddToModel(frame.cloud);
     ++result_.frames;
@@ -281,7 +265,7 @@ Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options) {
   auto mosaic = GridAtPoses(options, result.trajectory);
   if (!mosaic.ok()) return mosaic.error();
   result.mosaic = std::move(*mosaic);
-  result.grid_seconds = MsSince(grid_start) * 1e-3;
+  result.grid_seconds = MillisecondsSince(grid_start) * 1e-3;
   return result;
 }
 

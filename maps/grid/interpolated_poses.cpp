@@ -11,6 +11,13 @@ StampedPose2d Flatten(TimeNs time_ns, const Eigen::Isometry3d& world_T_body) {
   return {time_ns, world_T_body.translation().head<2>(), std::atan2(x_axis.y(), x_axis.x())};
 }
 
+Eigen::Isometry3d Lift(const Eigen::Isometry2d& pose) {
+  Eigen::Isometry3d lifted = Eigen::Isometry3d::Identity();
+  lifted.linear().topLeftCorner<2, 2>() = pose.linear();
+  lifted.translation().head<2>() = pose.translation();
+  return lifted;
+}
+
 InterpolatedPoses::InterpolatedPoses(std::vector<StampedPose2d> poses) : poses_(std::move(poses)) {}
 
 std::optional<Eigen::Isometry2d> InterpolatedPoses::PoseAt(TimeNs t) const {

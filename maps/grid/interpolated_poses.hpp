@@ -21,6 +21,9 @@ struct StampedPose2d {
 // (x, y, yaw) of a 3D pose: position and the heading of its x axis projected on the plane.
 StampedPose2d Flatten(TimeNs time_ns, const Eigen::Isometry3d& world_T_body);
 
+// The 3D pose of a planar one: on the ground plane (z, roll and pitch zero).
+Eigen::Isometry3d Lift(const Eigen::Isometry2d& pose);
+
 class InterpolatedPoses : public VehiclePoseSource {
  public:
   // poses in increasing time order.

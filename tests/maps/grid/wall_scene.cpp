@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "hal/velodyne/laser_table.hpp"
+#include "maps/grid/interpolated_poses.hpp"
 #include "maps/grid/structure_grid_config.hpp"
 
 namespace flat2d::maps {
@@ -23,13 +24,6 @@ std::optional<double> CastInScene(const Eigen::Vector3d& origin, const Eigen::Ve
   }
   if (best && *best > 100.0) return std::nullopt;
   return best;
-}
-
-Eigen::Isometry3d Lift(const Eigen::Isometry2d& pose) {
-  Eigen::Isometry3d lifted = Eigen::Isometry3d::Identity();
-  lifted.linear().topLeftCorner<2, 2>() = pose.linear();
-  lifted.translation().head<2>() = pose.translation();
-  return lifted;
 }
 
 }  // namespace
