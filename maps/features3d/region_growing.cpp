@@ -1,0 +1,66 @@
+#include "maps/features3d/region_growing.hpp"
+
+#include <algorithm>
+
+namespace flat2d::maps::features3d {
+
+const Clusters& RegionGrowing::Segment(const range3d::IndexImage& image, const range3d::SurfelCloud& cloud) {
+  const std::size_t pixels = static_cast<std::size_t>(image.rows()) * static_cast<std::size_t>(image.cols());
+  labelled_.assign(pixels, 0);
+  pool_.reserve(pixels);
+  clusters_.points.clear();
+  clusters_.begin.assign(1, 0);
+  for (std::size_t offset = 0; offset < pixels; ++offset) {
+    const std::int32_t index = image.indices()[offset];
+    if (index < 0 || labelled_[offset] != 0 || !cloud.has_normal(static_cast<std::size_t>(index))) continue;
+    const auto [size, rows] = Grow(offset, image, cloud);
+    if (size > options_.min_cluster_points() && rows >= static_cast<int>(options_.min_rows())) {
+      clusters_.begin.push_back(clusters_.points.size());
+    } else {
+      clusters_.points.resize(clusters_.points.size() - size);  // dropped, its pixels stay labelled
+    }
+  }
+  return clusters_;
+}
+
+std::pair<std::size_t, int> RegionGrowing::Grow(std::size_t start, const range3d::IndexImage& image,
+                                const range3d::SurfelCloud& cloud) {
+  const int rows = image.rows(), cols = image.cols();
+  const int reach = static_cast<int>(options_.neighbour_cols());
+  pool_.clear();
+  pool_.push_back(start);
+  labelled_[start] = 1;
+  int top = rows, bottom = -1;
+  for (std::size_t head = 0; head < pool_.size(); ++head) {  // the pool is a FIFO over pool_
+    const std::size_t offset = pool_[head];
+    const auto seed = static_cast<std::size_t>(image.indices()[offset]);
+    clusters_.points.push_back(static_cast<std::int32_t>(seed));
+    const int row = static_cast<int>(offset / static_cast<std::size_t>(cols));
+    const int col = static_cast<int>(offset % static_cast<std::size_t>(cols));
+    top = std::min(top, row);
+    bottom = std::max(bottom, row);
+    for (int r = std::max(0, row - 1); r <= std::min(rows - 1, row + 1); ++r) {
+      for (int dc = -reach; dc <= reach; ++dc) {
+        const int c = (col + dc + cols) % cols;  // the azimuth wraps round
+        const std::size_t neighbour = static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c);
+        const std::int32_t index = image.indices()[neighbour];
+        if (index < 0 || labelled_[neighbour] != 0) continue;
+        if (!Joins(cloud, seed, static_cast<std::size_t>(index))) continue;
+        labelled_[neighbour] = 1;
+        pool_.push_back(neighbour);
+      }
+    }
+  }
+  return {pool_.size(), bottom - top + 1};
+}
+
+bool RegionGrowing::Joins(const range3d::SurfelCloud& cloud, std::size_t seed, std::size_t candidate) const {
+  if (!cloud.has_normal(candidate)) return false;
+  const Eigen::Vector3f& p = cloud.points[seed];
+  const auto max_distance = static_cast<float>(options_.max_distance_m() + options_.max_distance_per_m() * static_cast<double>(p.norm()));
+  const bool near = (p - cloud.points[candidate]).squaredNorm() < max_distance * max_distance;  // Eq. 8.2
+  const bool aligned = cloud.normals[seed].dot(cloud.normals[candidate]) > static_cast<float>(options_.min_normal_dot());  // Eq. 8.3
+  return options_.join() == SegmentationOptions::EITHER ? (near || aligned) : (near && aligned);
+}
+
+}  // namespace flat2d::maps::features3d

@@ -1,0 +1,94 @@
+#include "maps/features3d/region_growing.hpp"
+
+#include <gtest/gtest.h>
+
+namespace flat2d::maps::features3d {
+namespace {
+
+SegmentationOptions Options(SegmentationOptions::JoinRule join) {
+  SegmentationOptions options;
+  options.set_max_distance_m(0.3);
+  options.set_max_distance_per_m(0.0);
+  options.set_min_normal_dot(0.9);
+  options.set_min_cluster_points(3);
+  options.set_join(join);
+  options.set_neighbour_cols(1);
+  options.set_min_rows(0);
+  return options;
+}
+
+// Pixels (row, col) showing points with normals, the rest empty.
+struct TestCloud {
+  range3d::IndexImage image;
+  range3d::SurfelCloud cloud;
+  TestCloud() { image.Clear(4, 20); }
+  void Add(int row, int col, const Eigen::Vector3f& p, const Eigen::Vector3f& n) {
+    image.Set(row, col, static_cast<std::int32_t>(cloud.points.size()), p.norm());
+    cloud.points.push_back(p);
+    cloud.normals.push_back(n);
+    cloud.curvature.push_back(0.0F);
+    cloud.disc_gain.push_back(0.0F);
+  }
+};
+
+// Two walls meeting at a corner: columns 0-7 face x, 8-15 face y, 0.1 m apart in space.
+TestCloud Corner() {
+  TestCloud t;
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 16; ++col) {
+      const bool first = col < 8;
+      const float s = 0.1F * static_cast<float>(col);
+      const Eigen::Vector3f p(first ? 5.0F : 5.0F - (s - 0.8F), first ? s : 0.8F, 0.2F * static_cast<float>(row));
+      t.Add(row, col, p, first ? Eigen::Vector3f(-1, 0, 0) : Eigen::Vector3f(0, -1, 0));
+    }
+  }
+  return t;
+}
+
+TEST(RegionGrowing, BothRuleSplitsAtTheCorner) {
+  const TestCloud t = Corner();
+  RegionGrowing segmentation(Options(SegmentationOptions::BOTH));
+  const Clusters& clusters = segmentation.Segment(t.image, t.cloud);
+  ASSERT_EQ(clusters.size(), 2U);
+  EXPECT_EQ(clusters.size_of(0), 24U);
+  EXPECT_EQ(clusters.size_of(1), 24U);
+  for (std::size_t i = clusters.begin[0]; i < clusters.begin[1]; ++i) {
+    EXPECT_LT(t.cloud.points[static_cast<std::size_t>(clusters.points[i])].y(), 0.75F);  // all of the first wall
+  }
+}
+
+// The text's rule: nearness alone joins the walls.
+TEST(RegionGrowing, EitherRuleJoinsNearPoints) {
+  const TestCloud t = Corner();
+  RegionGrowing segmentation(Options(SegmentationOptions::EITHER));
+  const Clusters& clusters = segmentation.Segment(t.image, t.cloud);
+  ASSERT_EQ(clusters.size(), 1U);
+  EXPECT_EQ(clusters.size_of(0), 48U);
+}
+
+// A moving seed follows a long wall whose ends are much farther apart than eps_d.
+TEST(RegionGrowing, MovingSeedGrowsAlongAWall) {
+  TestCloud t;
+  for (int col = 0; col < 20; ++col) t.Add(1, col, {4.0F, 0.25F * static_cast<float>(col), 0.0F}, {-1, 0, 0});
+  RegionGrowing segmentation(Options(SegmentationOptions::BOTH));
+  const Clusters& clusters = segmentation.Segment(t.image, t.cloud);
+  ASSERT_EQ(clusters.size(), 1U);
+  EXPECT_EQ(clusters.size_of(0), 20U);
+}
+
+// Clusters of eps_c points or fewer are dropped; points without a normal join nothing; the
+// azimuth wraps round from the last column to the first.
+TEST(RegionGrowing, DropsSmallClustersSkipsUndefinedNormalsAndWraps) {
+  TestCloud t;
+  for (int col : {18, 19, 0, 1}) t.Add(0, col, {4.0F, 0.05F * static_cast<float>((col + 2) % 20), 0.0F}, {-1, 0, 0});
+  t.Add(2, 10, {3.0F, 1.0F, 0.0F}, {-1, 0, 0});  // alone
+  t.Add(2, 11, {3.0F, 1.05F, 0.0F}, {0, 0, 0});  // no normal
+  t.Add(2, 12, {3.0F, 1.10F, 0.0F}, {-1, 0, 0});
+  RegionGrowing segmentation(Options(SegmentationOptions::BOTH));
+  const Clusters& clusters = segmentation.Segment(t.image, t.cloud);
+  ASSERT_EQ(clusters.size(), 1U);
+  EXPECT_EQ(clusters.size_of(0), 4U);
+}
+
+}  // namespace
+}  // namespace flat2d::maps::features3d
