@@ -21,6 +21,7 @@
 #include "localization/tools/nicp_build_command.hpp"
 #include "localization/tools/nicp_drive_command.hpp"
 #include "localization/tools/prior_map_output.hpp"
+#include "localization/tools/features_command.hpp"
 #include "localization/tools/register_command.hpp"
 #include "localization/tools/shipped_config.hpp"
 #include "maps/grid/class_grid_file.hpp"
@@ -48,6 +49,7 @@ constexpr const char* kUsage = R"(usage:
   flat2d-map build --mode nicp LIST --out DIR [options]
   flat2d-map build --mode nicp DRIVE.pcap --out DIR [--can LOG --dbc DBC --odometry CONFIG] [options]
   flat2d-map register SOURCE TARGET [--init FILE] [--method M] [--json] [options]
+  flat2d-map features INPUT [--revolution N] [--json] [--png OUT] [options]
 
 build: keyframes every --keyframe-distance metres or --keyframe-angle radians, each
 scan-matched against the previous keyframes (tracking) and against earlier keyframes near
@@ -449,9 +451,10 @@ int main(int argc, char** argv) {
   if (command == "info") return Info(argc - 2, argv + 2);
   if (command == "render") return Render(argc - 2, argv + 2);
   if (command == "register") return localization::tools::RegisterCommand(argc - 2, argv + 2);
+  if (command == "features") return localization::tools::FeaturesCommand(argc - 2, argv + 2);
   if (command == "--help" || command == "-h") {
     std::cout << kUsage << localization::tools::kNicpBuildUsage << localization::tools::kNicpDriveUsage
-              << localization::tools::kRegisterUsage;
+              << localization::tools::kRegisterUsage << localization::tools::kFeaturesUsage;
     return 0;
   }
   Fail(1, std::string("unknown or missing command\n") + kUsage);

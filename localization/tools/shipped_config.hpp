@@ -9,4 +9,7 @@ namespace flat2d::localization {
 // The structure-grid options flat2d-grid and flat2d-map use without --config.
 std::string ShippedGridConfig();
 
+// The 3D feature extraction options `flat2d-map features` uses without --features-config.
+std::string ShippedFeaturesConfig();
+
 }  // namespace flat2d::localization
