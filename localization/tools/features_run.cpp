@@ -39,15 +39,6 @@ class Extractors {
   std::map<SensorModel, std::unique_ptr<maps::features3d::FeatureExtractor>> extractors_;
 };
 
-SensorModel ModelOf(hal::velodyne::Model model) {
-  switch (model) {
-    case hal::velodyne::Model::kVlp16: return SensorModel::kVlp16;
-    case hal::velodyne::Model::kHdl32e: return SensorModel::kHdl32e;
-    case hal::velodyne::Model::kVlp32c: return SensorModel::kVlp32c;
-  }
-  return SensorModel::kAuto;
-}
-
 // The judge of a simulator run: the world's landmarks and the truth.
 class Judge {
  public:
@@ -130,7 +121,7 @@ Status RunCapture(const FeaturesRunOptions& options, const FeaturesHandler& hand
   std::optional<PartialRevolution> partial;
   auto on_revolution = [&](const hal::velodyne::Revolution& revolution) {
     if (!status.ok()) return;
-    const SensorModel sensor = ModelOf(stream->identification()->model);
+    const SensorModel sensor = maps::range3d::SensorModelOf(stream->identification()->model);
     if (!revolution.complete) {
       if (index == 0 && (!partial || static_cast<std::size_t>(revolution.points) > partial->cloud.points.size())) {
         partial = PartialRevolution{revolution.start_ns(), sensor, features.Cloud(revolution)};

@@ -143,4 +143,21 @@ Result<GridRunResult> RunGrid(const GridRunOptions& options) {
   return result;
 }
 
+Result<std::optional<maps::ClassGrid>> GridCaptureAtPoses(const std::filesystem::path& capture,
+                                                          const maps::StructureGridOptions& grid,
+                                                          const hal::velodyne::VelodyneStreamOptions& stream,
+                                                          const maps::AccumulationOptions& accumulation,
+                                                          const std::vector<hal::trajectory::StampedPose>& trajectory) {
+  GridRunOptions pass;
+  pass.capture = capture;
+  pass.grid = grid;
+  pass.stream = stream;
+  for (const hal::trajectory::StampedPose& p : trajectory) pass.poses.push_back(maps::Flatten(p.time_ns, p.world_T_body));
+  pass.accumulate = true;
+  pass.accumulation = accumulation;
+  auto mosaic = RunGrid(pass);
+  if (!mosaic.ok()) return mosaic.error();
+  return std::move(mosaic->grid);
+}
+
 }  // namespace flat2d::localization

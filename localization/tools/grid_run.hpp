@@ -19,6 +19,7 @@
 #include <Eigen/Geometry>
 
 #include "hal/common/error.hpp"
+#include "hal/trajectory/tum_file.hpp"
 #include "hal/velodyne/velodyne_stream.hpp"
 #include "maps/grid/class_grid.hpp"
 #include "maps/grid/grid_accumulator.hpp"
@@ -64,6 +65,15 @@ struct GridRunResult {
 };
 
 Result<GridRunResult> RunGrid(const GridRunOptions& options);
+
+// The capture gridded again at poses found by a 3D build (world_T_vehicle at revolution
+// stamps, flattened), every revolution voting into one mosaic: the map of `flat2d-map build
+// --mode nicp|landmarks`. Empty when nothing was gridded.
+Result<std::optional<maps::ClassGrid>> GridCaptureAtPoses(const std::filesystem::path& capture,
+                                                          const maps::StructureGridOptions& grid,
+                                                          const hal::velodyne::VelodyneStreamOptions& stream,
+                                                          const maps::AccumulationOptions& accumulation,
+                                                          const std::vector<hal::trajectory::StampedPose>& trajectory);
 
 // The world grid that covers every pose with `margin_m` to spare, at `resolution_m`.
 maps::GridGeometry CoveringGeometry(const std::vector<maps::StampedPose2d>& poses,

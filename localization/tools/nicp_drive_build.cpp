@@ -19,15 +19,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-maps::range3d::SensorModel FrameModel(hal::velodyne::Model model) {
-  switch (model) {
-    case hal::velodyne::Model::kVlp16: return maps::range3d::SensorModel::kVlp16;
-    case hal::velodyne::Model::kHdl32e: return maps::range3d::SensorModel::kHdl32e;
-    case hal::velodyne::Model::kVlp32c: return maps::range3d::SensorModel::kVlp32c;
-  }
-  return maps::range3d::SensorModel::kAuto;
-}
-
 // The revolution-to-revolution tracker: one call per complete revolution, in time order.
 class RevolutionTracker {
  public:
@@ -43,7 +34,7 @@ class RevolutionTracker {
     const double load_ms = MillisecondsSince(load_start);
     const Clock::time_point frame_start = Clock::now();
     registration::SnicpFrame frame;  // one level: the model tracker's input, kept as it is
-    frame.levels.push_back(maps::range3d::FrameFromCloud(cloud, FrameModel(model), options_.frames));
+    frame.levels.push_back(maps::range3d::FrameFromCloud(cloud, maps::range3d::SensorModelOf(model), options_.frames));
     const maps::range3d::RangeFrame& current = frame.levels.front();
     if (result_.frames == 0) {
       Start(stamp);
@@ -127,9 +118,7 @@ class RevolutionTracker {
   // The sensor's motion from t0 to t by the odometry (none outside its time).
   std::optional<Eigen::Isometry3d> OdometryMotion(TimeNs t0, TimeNs t) const {
     if (odometry_ == nullptr) return std::nullopt;
-    const auto from = odometry_->PoseAt(t0), to = odometry_->PoseAt(t);
-    if (!from || !to) return std::nullopt;
-    return vehicle_T_sensor_.inverse() * maps::Lift(from->inverse() * *to) * vehicle_T_sensor_;
+    return tools::OdometrySensorMotion(*odometry_, vehicle_T_sensor_, t0, t);
   }
 
   // The previous motion, scaled to the time from t0 to t.
@@ -220,21 +209,6 @@ Result<std::optional<maps::InterpolatedPoses>> OpenOdometry(const NicpDriveOptio
   return std::optional<maps::InterpolatedPoses>(std::move(*poses));
 }
 
-// The capture gridded at the tracked poses, every revolution voting into one mosaic.
-Result<std::optional<maps::ClassGrid>> GridAtPoses(const NicpDriveOptions& options,
-                                                   const std::vector<hal::trajectory::StampedPose>& trajectory) {
-  GridRunOptions pass;
-  pass.capture = options.capture;
-  pass.grid = options.grid;
-  pass.stream = options.stream;
-  for (const hal::trajectory::StampedPose& p : trajectory) pass.poses.push_back(maps::Flatten(p.time_ns, p.world_T_body));
-  pass.accumulate = true;
-  pass.accumulation = options.accumulation;
-  auto mosaic = RunGrid(pass);
-  if (!mosaic.ok()) return mosaic.error();
-  return std::move(mosaic->grid);
-}
-
 }  // namespace
 
 Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options) {
@@ -262,7 +236,7 @@ Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options) {
   if (result.frames == 0) return MakeError(options.capture.string() + ": no complete Velodyne revolution");
   if (!options.build_map) return result;
   const Clock::time_point grid_start = Clock::now();
-  auto mosaic = GridAtPoses(options, result.trajectory);
+  auto mosaic = GridCaptureAtPoses(options.capture, options.grid, options.stream, options.accumulation, result.trajectory);
   if (!mosaic.ok()) return mosaic.error();
   result.mosaic = std::move(*mosaic);
   result.grid_seconds = MillisecondsSince(grid_start) * 1e-3;

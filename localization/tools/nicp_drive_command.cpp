@@ -134,25 +134,6 @@ void Prepare(Args& a) {
   }
 }
 
-// The tracked poses as the map writer's path: each revolution a "keyframe" with its distance.
-std::vector<mapping::Keyframe> PathOf(const std::vector<hal::trajectory::StampedPose>& trajectory,
-                                      std::vector<evaluation::TimedPose>& planar) {
-  std::vector<mapping::Keyframe> path;
-  double path_m = 0.0;
-  for (const hal::trajectory::StampedPose& p : trajectory) {
-    const maps::StampedPose2d flat = maps::Flatten(p.time_ns, p.world_T_body);
-    const Se2 pose(flat.position, flat.yaw);
-    if (!path.empty()) path_m += (pose.translation() - path.back().estimate.translation()).norm();
-    mapping::Keyframe k;
-    k.time_s = static_cast<double>(p.time_ns) * 1e-9;
-    k.estimate = pose;
-    k.path_m = path_m;
-    path.push_back(std::move(k));
-    planar.push_back({k.time_s, pose});
-  }
-  return path;
-}
-
 // Writes the files; returns the map's viewpoints.
 std::size_t WriteOutputs(const Args& a, NicpDriveResult& r) {
   const std::filesystem::path out = a.out;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "maps/grid/grid_crop.hpp"
+#include "maps/grid/interpolated_poses.hpp"
 #include "maps/prior_map/viewpoint.hpp"
 #include "maps/render/class_grid_image.hpp"
 #include "maps/render/png_writer.hpp"
@@ -52,6 +53,24 @@ Result<MapOutput> WriteBuiltMap(maps::ClassGrid mosaic, const std::vector<mappin
     if (Status s = WritePreview(mosaic, trajectory, viewpoints, *options.png); !s.ok()) return s.error();
   }
   return MapOutput{viewpoints.size()};
+}
+
+std::vector<mapping::Keyframe> PathOf(const std::vector<hal::trajectory::StampedPose>& trajectory,
+                                      std::vector<evaluation::TimedPose>& planar) {
+  std::vector<mapping::Keyframe> path;
+  double path_m = 0.0;
+  for (const hal::trajectory::StampedPose& p : trajectory) {
+    const maps::StampedPose2d flat = maps::Flatten(p.time_ns, p.world_T_body);
+    const Se2 pose(flat.position, flat.yaw);
+    if (!path.empty()) path_m += (pose.translation() - path.back().estimate.translation()).norm();
+    mapping::Keyframe k;
+    k.time_s = static_cast<double>(p.time_ns) * 1e-9;
+    k.estimate = pose;
+    k.path_m = path_m;
+    path.push_back(std::move(k));
+    planar.push_back({k.time_s, pose});
+  }
+  return path;
 }
 
 }  // namespace flat2d::localization::tools

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hal/common/error.hpp"
+#include "hal/trajectory/tum_file.hpp"
 #include "localization/evaluation/relations.hpp"
 #include "localization/mapping/map_builder.hpp"
 #include "maps/grid/class_grid.hpp"
@@ -25,6 +26,11 @@ struct MapOutputOptions {
 struct MapOutput {
   std::size_t viewpoints = 0;
 };
+
+// A 3D build's poses as the map writer's path: each pose a "keyframe" with the distance
+// travelled to it; `planar` gets the poses flattened, for the preview.
+std::vector<mapping::Keyframe> PathOf(const std::vector<hal::trajectory::StampedPose>& trajectory,
+                                      std::vector<evaluation::TimedPose>& planar);
 
 // `path` gives the viewpoints' places (estimate and path_m of each keyframe or scan);
 // `trajectory` is drawn on the preview. Errors name the file that could not be written.

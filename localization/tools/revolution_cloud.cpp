@@ -28,4 +28,11 @@ Eigen::Isometry3d ScaledMotion(const Eigen::Isometry3d& motion, double f) {
   return scaled;
 }
 
+std::optional<Eigen::Isometry3d> OdometrySensorMotion(const maps::InterpolatedPoses& odometry,
+                                                      const Eigen::Isometry3d& vehicle_T_sensor, TimeNs t0, TimeNs t) {
+  const auto from = odometry.PoseAt(t0), to = odometry.PoseAt(t);
+  if (!from || !to) return std::nullopt;
+  return vehicle_T_sensor.inverse() * maps::Lift(from->inverse() * *to) * vehicle_T_sensor;
+}
+
 }  // namespace flat2d::localization::tools

@@ -10,17 +10,24 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include <Eigen/Geometry>
 
 #include "hal/cloud/point_cloud.hpp"
 #include "hal/common/time.hpp"
 #include "hal/velodyne/revolution.hpp"
+#include "maps/grid/interpolated_poses.hpp"
 
 namespace flat2d::localization::tools {
 
 // reference_T_sensor(t): the sensor at time t seen from the sensor at the reference time.
 using SensorMotion = std::function<Eigen::Isometry3d(TimeNs)>;
+
+// The sensor's motion from t0 to t by dead-reckoned vehicle poses (in the plane, lifted):
+// sensor(t0)_T_sensor(t); nullopt where the odometry does not cover both times.
+std::optional<Eigen::Isometry3d> OdometrySensorMotion(const maps::InterpolatedPoses& odometry,
+                                                      const Eigen::Isometry3d& vehicle_T_sensor, TimeNs t0, TimeNs t);
 
 // `motion` empty: the sensor is taken as standing still over the revolution.
 hal::cloud::PointCloud RevolutionCloud(const hal::velodyne::Revolution& revolution, const SensorMotion& motion);

@@ -114,6 +114,15 @@ SensorModel DetectLidar(const std::vector<Eigen::Vector3f>& points) {
   return SensorModel::kUnorganized;
 }
 
+SensorModel SensorModelOf(hal::velodyne::Model model) {
+  switch (model) {
+    case hal::velodyne::Model::kVlp16: return SensorModel::kVlp16;
+    case hal::velodyne::Model::kHdl32e: return SensorModel::kHdl32e;
+    case hal::velodyne::Model::kVlp32c: return SensorModel::kVlp32c;
+  }
+  return SensorModel::kAuto;
+}
+
 RangeProjection LidarProjection(SensorModel sensor, int columns) {
   if (sensor == SensorModel::kKitti64) {
     // KITTI's archive has no laser table: 64 equal rows over the HDL-64E's +2 .. -24.9 deg.

@@ -16,6 +16,7 @@
 
 #include "hal/cloud/point_cloud.hpp"
 #include "hal/common/error.hpp"
+#include "hal/velodyne/model.hpp"
 #include "maps/range3d/index_image.hpp"
 #include "maps/range3d/projection.hpp"
 #include "maps/range3d/surface_statistics.hpp"
@@ -71,6 +72,9 @@ RangeFrame FrameFromCloud(const hal::cloud::PointCloud& cloud, SensorModel senso
 // The Velodyne model (kVlp16, kHdl32e, kVlp32c) whose laser elevations 95 % of the
 // points lie within 0.1 deg of, or kUnorganized.
 SensorModel DetectLidar(const std::vector<Eigen::Vector3f>& points);
+
+// The range-frame model of a decoded Velodyne model.
+SensorModel SensorModelOf(hal::velodyne::Model model);
 
 // The spherical projection of an organized LiDAR model with `columns` columns.
 RangeProjection LidarProjection(SensorModel sensor, int columns);
