@@ -103,10 +103,22 @@ bool OnMover(const Eigen::Vector3d& p, const std::vector<hal::sim::MoverFootprin
   });
 }
 
+// Half the horizontal width of a plane feature: its extent along the horizontal direction
+// within it.
+double HalfWidth(const maps::features3d::PlaneFeature& plane) {
+  const Eigen::Vector3d horizontal = Eigen::Vector3d::UnitZ().cross(plane.normal).normalized();
+  const Eigen::Vector3d minor_axis = plane.normal.cross(plane.major_axis);
+  return plane.half_extent.x() * std::abs(plane.major_axis.dot(horizontal)) +
+         plane.half_extent.y() * std::abs(minor_axis.dot(horizontal));
+}
+
+// A plane matches the face nearest its centroid (errors from that one), and finds every face
+// of the same wall its extent covers: a wall with doors is several faces in one plane.
 void MatchPlane(const maps::features3d::PlaneFeature& plane, const Eigen::Isometry3d& world_T_sensor,
                 const hal::sim::SceneLandmarks& truth, const FeatureAccuracyOptions& options, RevolutionAccuracy& out) {
   const Eigen::Vector3d normal = world_T_sensor.linear() * plane.normal;
   const Eigen::Vector3d centroid = world_T_sensor * plane.centroid;
+  const double half_width = HalfWidth(plane);
   std::optional<std::size_t> best;
   double best_offset = options.offset_gate_m;
   for (std::size_t k = 0; k < truth.faces.size(); ++k) {
@@ -115,6 +127,9 @@ void MatchPlane(const maps::features3d::PlaneFeature& plane, const Eigen::Isomet
     const Eigen::Vector3d outward(f.outward.x(), f.outward.y(), 0.0);
     if (AngleDeg(normal, outward) > options.normal_gate_deg) continue;
     const FaceCoordinates c = OnFace(f, centroid, options.extent_margin_m);
+    if (!(std::abs(c.across) < options.offset_gate_m) || !c.within_height) continue;
+    if (c.along + half_width < 0.0 || c.along - half_width > c.length) continue;  // no overlap
+    out.faces_found.push_back(static_cast<int>(k));
     if (std::abs(c.across) < best_offset && Within(c, options.extent_margin_m)) {
       best_offset = std::abs(c.across);
       best = k;
@@ -125,7 +140,6 @@ void MatchPlane(const maps::features3d::PlaneFeature& plane, const Eigen::Isomet
   const Eigen::Vector3d truth_normal = world_T_sensor.linear().transpose() * Eigen::Vector3d(f.outward.x(), f.outward.y(), 0.0);
   const Eigen::Vector3d truth_point = world_T_sensor.inverse() * Eigen::Vector3d(f.a.x(), f.a.y(), f.z_bottom);
   ++out.planes_matched;
-  out.faces_found.push_back(static_cast<int>(*best));
   out.normal_error_deg.push_back(AngleDeg(plane.normal, truth_normal));
   out.offset_error_m.push_back(std::abs(plane.d + truth_normal.dot(truth_point)));  // d_truth = -n.p
 }

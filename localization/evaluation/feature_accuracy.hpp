@@ -7,8 +7,9 @@
 // in_view_width_m along a face or in_view_height_m up a pole: a wall glimpsed through a
 // door or a pole's foot behind a car is not a landmark anyone could fit. A plane matches a face
 // whose outward normal is within normal_gate_deg of its own and whose plane passes within
-// offset_gate_m of its centroid, the centroid inside the face's extent (+ margin); a line
-// matches a pole whose axis passes within radius + axis_gate_m of its centroid. Poles built
+// offset_gate_m of its centroid, the centroid inside the face's extent (+ margin), and it
+// finds every such face its horizontal extent overlaps (a wall with doors is several faces
+// in one plane); a line matches a pole whose axis passes within radius + axis_gate_m of its centroid. Poles built
 // into a wall (the axis within the radius of a face) are bumps on it, never in view. Errors: a
 // plane's normal angle and the difference of its offset d from the truth's in the sensor
 // frame; a line's angle to the vertical and its centroid's distance from the axis.
