@@ -144,6 +144,7 @@ void LandmarkSlam::Optimize(int iterations, int first_free_pose) {
   stats_.downweighted_factors = result.downweighted_factors;
   stats_.final_cost = result.final_cost;
   stats_.solve_ms_total += result.milliseconds;
+  stats_.last_solve_ms = result.milliseconds;
   nodes_since_optimization_ = 0;
   RefreshTracks();
 }

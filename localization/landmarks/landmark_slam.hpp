@@ -75,6 +75,7 @@ struct LandmarkSlamStats {
   int downweighted_factors = 0;   // robust weight < 1/2 at the last optimization
   double final_cost = 0.0;        // robust cost after the last optimization
   double solve_ms_total = 0.0;    // in OptimizeGraph
+  double last_solve_ms = 0.0;     // of the last optimization (Finish's, once it ran)
   double backend_ms_total = 0.0;  // in Add and Finish, association and solves
 };
 

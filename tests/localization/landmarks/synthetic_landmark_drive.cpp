@@ -113,6 +113,38 @@ void AddClutter(const Eigen::Isometry3d& world_T_sensor, int count, std::mt19937
   }
 }
 
+// The features of every landmark within range of the sensor, counted as sightings, plus
+// clutter; a fraction of them corrupted.
+maps::features3d::FeatureSet FeaturesSeen(const Eigen::Isometry3d& world_T_sensor, const DriveSettings& s,
+                                          std::mt19937& noise_rng, std::mt19937& corruption_rng, Drive& drive) {
+  const World& world = drive.world;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  maps::features3d::FeatureSet features;
+  const Eigen::Vector3d sensor = world_T_sensor.translation();
+  const Eigen::Vector3d up = world_T_sensor.linear().transpose() * Eigen::Vector3d::UnitZ();
+  for (std::size_t w = 0; w < world.walls.size(); ++w) {
+    const Wall& wall = world.walls[w];
+    if (DistanceToSegment(sensor.head<2>(), wall) > s.range_m) continue;
+    ++drive.wall_sightings[w];
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ().cross(wall.Along());
+    if (normal.dot(sensor - wall.Center()) < 0.0) normal = -normal;
+    PlaneFeature f = PlaneSeen(world_T_sensor, wall.Center(), normal, wall.Along(), wall.HalfLength(), 0.5 * wall.height, noise_rng);
+    if (unit(corruption_rng) < s.corrupted_fraction) Corrupt(up, s.corruption_offset_m, s.corruption_angle_rad, f);
+    features.planes.push_back(f);
+  }
+  for (std::size_t p = 0; p < world.poles.size(); ++p) {
+    const Pole& pole = world.poles[p];
+    if ((pole.base.head<2>() - sensor.head<2>()).norm() > s.range_m) continue;
+    ++drive.pole_sightings[p];
+    LineFeature f = LineSeen(world_T_sensor, pole.base + 0.5 * pole.length * Eigen::Vector3d::UnitZ(),
+                             Eigen::Vector3d::UnitZ(), 0.5 * pole.length, noise_rng);
+    if (unit(corruption_rng) < s.corrupted_fraction) Corrupt(s.corruption_offset_m, s.corruption_angle_rad, f);
+    features.lines.push_back(f);
+  }
+  AddClutter(world_T_sensor, s.clutter_per_revolution, noise_rng, features);
+  return features;
+}
+
 }  // namespace
 
 World MakeLoopWorld(std::mt19937& rng) {
@@ -143,6 +175,24 @@ World MakeLoopWorld(std::mt19937& rng) {
   return world;
 }
 
+World MakeAvenueWorld(std::mt19937& rng, double radius) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  World world;
+  const double circumference = 2.0 * kPi * radius;
+  for (double s = 0.0; s < circumference; s += 6.0) {
+    const double side = static_cast<int>(s / 6.0) % 2 == 0 ? 1.0 : -1.0;
+    const double r = radius + side * (5.0 + 7.0 * unit(rng));
+    const double phi = s / radius, turn = (unit(rng) - 0.5) * 2.0 * (15.0 * kPi / 180.0);
+    world.walls.push_back(TangentWall(Polar(r, phi), phi + kPi / 2.0 + turn, 1.0 + 1.5 * unit(rng)));
+  }
+  for (double s = 2.0; s < circumference; s += 4.0) {
+    const double side = unit(rng) < 0.5 ? 1.0 : -1.0;
+    const Eigen::Vector2d xy = Polar(radius + side * (2.5 + 5.5 * unit(rng)), s / radius);
+    world.poles.push_back(Pole{Eigen::Vector3d(xy.x(), xy.y(), 0.0), 2.0 + 2.0 * unit(rng)});
+  }
+  return world;
+}
+
 Drive MakeDrive(const World& world, const DriveSettings& s, std::mt19937& noise_rng, std::mt19937& corruption_rng) {
   Drive drive;
   drive.world = world;
@@ -152,7 +202,6 @@ Drive MakeDrive(const World& world, const DriveSettings& s, std::mt19937& noise_
   drive.wall_sightings.assign(world.walls.size(), 0);
   drive.pole_sightings.assign(world.poles.size(), 0);
   std::normal_distribution<double> g(0.0, 1.0);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   Eigen::Isometry3d odometry = Eigen::Isometry3d::Identity();
   for (int k = 0; k < s.revolutions; ++k) {
     const double theta = k * s.spacing_m / s.loop_radius_m;
@@ -170,31 +219,7 @@ Drive MakeDrive(const World& world, const DriveSettings& s, std::mt19937& noise_
       odometry = odometry * step;
     }
     r.odometry_world_T_vehicle = odometry;
-    if (s.features) {
-      const Eigen::Isometry3d world_T_sensor = r.truth_world_T_vehicle * drive.vehicle_T_sensor;
-      const Eigen::Vector3d sensor = world_T_sensor.translation();
-      const Eigen::Vector3d up = world_T_sensor.linear().transpose() * Eigen::Vector3d::UnitZ();
-      for (std::size_t w = 0; w < world.walls.size(); ++w) {
-        const Wall& wall = world.walls[w];
-        if (DistanceToSegment(sensor.head<2>(), wall) > s.range_m) continue;
-        ++drive.wall_sightings[w];
-        Eigen::Vector3d normal = Eigen::Vector3d::UnitZ().cross(wall.Along());
-        if (normal.dot(sensor - wall.Center()) < 0.0) normal = -normal;
-        PlaneFeature f = PlaneSeen(world_T_sensor, wall.Center(), normal, wall.Along(), wall.HalfLength(), 0.5 * wall.height, noise_rng);
-        if (unit(corruption_rng) < s.corrupted_fraction) Corrupt(up, s.corruption_offset_m, s.corruption_angle_rad, f);
-        r.features.planes.push_back(f);
-      }
-      for (std::size_t p = 0; p < world.poles.size(); ++p) {
-        const Pole& pole = world.poles[p];
-        if ((pole.base.head<2>() - sensor.head<2>()).norm() > s.range_m) continue;
-        ++drive.pole_sightings[p];
-        LineFeature f = LineSeen(world_T_sensor, pole.base + 0.5 * pole.length * Eigen::Vector3d::UnitZ(),
-                                 Eigen::Vector3d::UnitZ(), 0.5 * pole.length, noise_rng);
-        if (unit(corruption_rng) < s.corrupted_fraction) Corrupt(s.corruption_offset_m, s.corruption_angle_rad, f);
-        r.features.lines.push_back(f);
-      }
-      AddClutter(world_T_sensor, s.clutter_per_revolution, noise_rng, r.features);
-    }
+    if (s.features) r.features = FeaturesSeen(r.truth_world_T_vehicle * drive.vehicle_T_sensor, s, noise_rng, corruption_rng, drive);
     drive.revolutions.push_back(r);
   }
   return drive;

@@ -72,6 +72,11 @@ struct Drive {
 // poles inside and outside the loop, one at the world's origin.
 World MakeLoopWorld(std::mt19937& rng);
 
+// A long avenue bent into a circle of `radius` (68 m: the office drive's 428 m): walls
+// every ~6 m on either side 5-12 m from the road, poles every ~4 m 2.5-8 m from it, so that
+// a revolution sees some 25 landmarks within 20 m and each stays in view for ~40 m of road.
+World MakeAvenueWorld(std::mt19937& rng, double radius);
+
 // Drives `settings.revolutions` revolutions counterclockwise around the loop, starting at
 // (R, 0) heading +y. `noise_rng` draws the odometry and feature noise and the clutter;
 // `corruption_rng` only the corruption, so a corrupted drive differs from a clean one by
