@@ -22,6 +22,7 @@
 #include "localization/tools/nicp_drive_command.hpp"
 #include "localization/tools/prior_map_output.hpp"
 #include "localization/tools/features_command.hpp"
+#include "localization/tools/landmark_drive_command.hpp"
 #include "localization/tools/register_command.hpp"
 #include "localization/tools/shipped_config.hpp"
 #include "maps/grid/class_grid_file.hpp"
@@ -50,6 +51,7 @@ constexpr const char* kUsage = R"(usage:
   flat2d-map build --mode nicp DRIVE.pcap --out DIR [--can LOG --dbc DBC --odometry CONFIG] [options]
   flat2d-map register SOURCE TARGET [--init FILE] [--method M] [--json] [options]
   flat2d-map features INPUT [--revolution N] [--json] [--png OUT] [options]
+  flat2d-map build --mode landmarks DRIVE.pcap --out DIR --can LOG --dbc DBC --odometry CONFIG [options]
 
 build: keyframes every --keyframe-distance metres or --keyframe-angle radians, each
 scan-matched against the previous keyframes (tracking) and against earlier keyframes near
@@ -167,7 +169,7 @@ BuildArgs ParseBuild(int argc, char** argv) {
     auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     auto number = [&] { return maps::cli::ParseNumber(kTool, arg, value()); };
     if (arg == "--carmen") a.carmen = value();
-    else if (arg == "--mode") value();  // grid: NicpMode() sent nicp elsewhere
+    else if (arg == "--mode") value();  // grid: BuildMode() sent the others elsewhere
     else if (arg == "--pcap") a.pcap = value();
     else if (arg == "--can") a.can = value();
     else if (arg == "--dbc") a.dbc = value();
@@ -323,18 +325,21 @@ void WriteTrajectoryOrFail(const std::vector<TimedPose>& trajectory, const std::
   if (Status s = localization::evaluation::WriteTrajectory(trajectory, *path); !s.ok()) Fail(2, s.error().message);
 }
 
-bool NicpMode(int argc, char** argv) {
+// The value of --mode: grid (the default), nicp or landmarks.
+std::string_view BuildMode(int argc, char** argv) {
   for (int i = 0; i + 1 < argc; ++i) {
     if (std::string_view(argv[i]) != "--mode") continue;
     const std::string_view mode = argv[i + 1];
-    if (mode != "nicp" && mode != "grid") Fail(1, "build: --mode is grid (default) or nicp");
-    return mode == "nicp";
+    if (mode != "nicp" && mode != "grid" && mode != "landmarks") Fail(1, "build: --mode is grid (default), nicp or landmarks");
+    return mode;
   }
-  return false;
+  return "grid";
 }
 
 int Build(int argc, char** argv) {
-  if (NicpMode(argc, argv)) {
+  const std::string_view mode = BuildMode(argc, argv);
+  if (mode == "landmarks") return localization::tools::LandmarkDriveCommand(argc, argv);
+  if (mode == "nicp") {
     return localization::tools::IsDriveBuild(argc, argv) ? localization::tools::NicpDriveCommand(argc, argv)
                                                          : localization::tools::NicpBuildCommand(argc, argv);
   }
@@ -454,7 +459,8 @@ int main(int argc, char** argv) {
   if (command == "features") return localization::tools::FeaturesCommand(argc - 2, argv + 2);
   if (command == "--help" || command == "-h") {
     std::cout << kUsage << localization::tools::kNicpBuildUsage << localization::tools::kNicpDriveUsage
-              << localization::tools::kRegisterUsage << localization::tools::kFeaturesUsage;
+              << localization::tools::kRegisterUsage << localization::tools::kFeaturesUsage
+              << localization::tools::kLandmarkDriveUsage;
     return 0;
   }
   Fail(1, std::string("unknown or missing command\n") + kUsage);
