@@ -24,28 +24,32 @@ const Clusters& RegionGrowing::Segment(const range3d::IndexImage& image, const r
 }
 
 std::pair<std::size_t, int> RegionGrowing::Grow(std::size_t start, const range3d::IndexImage& image,
-                                const range3d::SurfelCloud& cloud) {
+                                                const range3d::SurfelCloud& cloud) {
   const int rows = image.rows(), cols = image.cols();
   const int reach = static_cast<int>(options_.neighbour_cols());
+  const std::int32_t* indices = image.indices().data();
   pool_.clear();
   pool_.push_back(start);
   labelled_[start] = 1;
   int top = rows, bottom = -1;
   for (std::size_t head = 0; head < pool_.size(); ++head) {  // the pool is a FIFO over pool_
     const std::size_t offset = pool_[head];
-    const auto seed = static_cast<std::size_t>(image.indices()[offset]);
+    const auto seed = static_cast<std::size_t>(indices[offset]);
     clusters_.points.push_back(static_cast<std::int32_t>(seed));
     const int row = static_cast<int>(offset / static_cast<std::size_t>(cols));
     const int col = static_cast<int>(offset % static_cast<std::size_t>(cols));
     top = std::min(top, row);
     bottom = std::max(bottom, row);
+    const Seed s = SeedAt(cloud, seed);
     for (int r = std::max(0, row - 1); r <= std::min(rows - 1, row + 1); ++r) {
+      const std::size_t row_start = static_cast<std::size_t>(r) * static_cast<std::size_t>(cols);
       for (int dc = -reach; dc <= reach; ++dc) {
-        const int c = (col + dc + cols) % cols;  // the azimuth wraps round
-        const std::size_t neighbour = static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c);
-        const std::int32_t index = image.indices()[neighbour];
-        if (index < 0 || labelled_[neighbour] != 0) continue;
-        if (!Joins(cloud, seed, static_cast<std::size_t>(index))) continue;
+        int c = col + dc;  // the azimuth wraps round
+        if (c < 0) c += cols;
+        if (c >= cols) c -= cols;
+        const std::size_t neighbour = row_start + static_cast<std::size_t>(c);
+        const std::int32_t index = indices[neighbour];
+        if (index < 0 || labelled_[neighbour] != 0 || !Joins(s, cloud, static_cast<std::size_t>(index))) continue;
         labelled_[neighbour] = 1;
         pool_.push_back(neighbour);
       }
@@ -54,13 +58,18 @@ std::pair<std::size_t, int> RegionGrowing::Grow(std::size_t start, const range3d
   return {pool_.size(), bottom - top + 1};
 }
 
-bool RegionGrowing::Joins(const range3d::SurfelCloud& cloud, std::size_t seed, std::size_t candidate) const {
-  if (!cloud.has_normal(candidate)) return false;
+RegionGrowing::Seed RegionGrowing::SeedAt(const range3d::SurfelCloud& cloud, std::size_t seed) const {
   const Eigen::Vector3f& p = cloud.points[seed];
-  const auto max_distance = static_cast<float>(options_.max_distance_m() + options_.max_distance_per_m() * static_cast<double>(p.norm()));
-  const bool near = (p - cloud.points[candidate]).squaredNorm() < max_distance * max_distance;  // Eq. 8.2
-  const bool aligned = cloud.normals[seed].dot(cloud.normals[candidate]) > static_cast<float>(options_.min_normal_dot());  // Eq. 8.3
-  return options_.join() == SegmentationOptions::EITHER ? (near || aligned) : (near && aligned);
+  const auto max_distance =
+      static_cast<float>(options_.max_distance_m() + options_.max_distance_per_m() * static_cast<double>(p.norm()));
+  return {p, cloud.normals[seed], max_distance * max_distance};
+}
+
+bool RegionGrowing::Joins(const Seed& seed, const range3d::SurfelCloud& cloud, std::size_t candidate) const {
+  if (!cloud.has_normal(candidate)) return false;
+  const bool near = (seed.point - cloud.points[candidate]).squaredNorm() < seed.max_distance_squared;  // Eq. 8.2
+  const bool aligned = seed.normal.dot(cloud.normals[candidate]) > min_normal_dot_;                  // Eq. 8.3
+  return either_ ? (near || aligned) : (near && aligned);
 }
 
 }  // namespace flat2d::maps::features3d

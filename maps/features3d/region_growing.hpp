@@ -37,19 +37,30 @@ struct Clusters {
 
 class RegionGrowing {
  public:
-  explicit RegionGrowing(const SegmentationOptions& options) : options_(options) {}
+  explicit RegionGrowing(const SegmentationOptions& options)
+      : options_(options), min_normal_dot_(static_cast<float>(options.min_normal_dot())),
+        either_(options.join() == SegmentationOptions::EITHER) {}
 
   // Segments the points `image` shows (indices into cloud, whose normals must be computed);
   // points without a normal belong to no cluster. The result lives until the next call.
   const Clusters& Segment(const range3d::IndexImage& image, const range3d::SurfelCloud& cloud);
 
  private:
-  bool Joins(const range3d::SurfelCloud& cloud, std::size_t seed, std::size_t candidate) const;
+  // The point taken from the pool, as its neighbours are judged against it.
+  struct Seed {
+    Eigen::Vector3f point;
+    Eigen::Vector3f normal;
+    float max_distance_squared;  // eps_d at its range, squared
+  };
+  Seed SeedAt(const range3d::SurfelCloud& cloud, std::size_t seed) const;
+  bool Joins(const Seed& seed, const range3d::SurfelCloud& cloud, std::size_t candidate) const;
   // Grows the cluster of pixel `start` into clusters_'s tail; returns its size and the rows
   // it spans.
   std::pair<std::size_t, int> Grow(std::size_t start, const range3d::IndexImage& image, const range3d::SurfelCloud& cloud);
 
   const SegmentationOptions options_;
+  const float min_normal_dot_;  // eps_n
+  const bool either_;           // the text's rule instead of Algorithm 8's
   Clusters clusters_;
   std::vector<std::uint8_t> labelled_;  // per pixel: in a cluster (kept or dropped) or queued
   std::vector<std::size_t> pool_;       // pixel offsets; at most one entry per pixel
