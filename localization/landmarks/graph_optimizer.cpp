@@ -21,14 +21,16 @@ struct NodeState {
   std::vector<PoseNode> poses;
   std::vector<PlaneNode> planes;
   std::vector<LineNode> lines;
+  std::vector<PointNode> points;
 };
 
-NodeState SaveNodes(const LandmarkGraph& graph) { return {graph.poses, graph.planes, graph.lines}; }
+NodeState SaveNodes(const LandmarkGraph& graph) { return {graph.poses, graph.planes, graph.lines, graph.points}; }
 
 void RestoreNodes(NodeState state, LandmarkGraph& graph) {
   graph.poses = std::move(state.poses);
   graph.planes = std::move(state.planes);
   graph.lines = std::move(state.lines);
+  graph.points = std::move(state.points);
 }
 
 // x [+] dx (Eq. 3.28) node by node.
@@ -42,6 +44,9 @@ void ApplyStep(const VariableLayout& layout, const Eigen::VectorXd& dx, Landmark
   }
   for (std::size_t l = 0; l < graph.lines.size(); ++l) {
     if (layout.line_offset[l] >= 0) graph.lines[l].line = Retract(graph.lines[l].line, dx.segment<4>(layout.line_offset[l]));
+  }
+  for (std::size_t l = 0; l < graph.points.size(); ++l) {
+    if (layout.point_offset[l] >= 0) graph.points[l].point += dx.segment<3>(layout.point_offset[l]);  // F4's retraction
   }
 }
 

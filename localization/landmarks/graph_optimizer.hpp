@@ -1,7 +1,7 @@
 // Levenberg-Marquardt on the manifold of the landmark graph (thesis 3.2, Algorithm 2, and
 // 3.4.2): poses move by RetractPose (F1), planes and lines by their own retractions
-// (plane.hpp P1, line.hpp A.17-A.18), with iteratively reweighted robust kernels on the
-// landmark factors.
+// (plane.hpp P1, line.hpp A.17-A.18), points by addition (point_factor.hpp), with
+// iteratively reweighted robust kernels on the landmark factors.
 //
 // Steps per iteration: linearize at the estimate (normal_equations.hpp); solve
 // (H + lambda diag(H)) dx = -b with a sparse LDLT (Eigen::SimplicialLDLT, AMD ordering,

@@ -110,6 +110,20 @@ std::optional<int> AssociateLine(const std::vector<LineTrack>& tracks, const Lin
   return best;
 }
 
+std::optional<int> AssociatePoint(const std::vector<Eigen::Vector3d>& landmarks, const Eigen::Vector3d& world_point,
+                                  const AssociationGates& gates) {
+  std::optional<int> best;
+  double best_squared = gates.point_distance_m * gates.point_distance_m;
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    const double squared = (landmarks[i] - world_point).squaredNorm();
+    if (squared <= best_squared) {
+      best_squared = squared;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
 void ExtendTrack(const PlaneFeature& world_feature, PlaneTrack& track) {
   const BoxInTrack box = FeatureBox(world_feature, track);
   track.box_min = track.box_min.cwiseMin(box.center - box.half);

@@ -18,6 +18,13 @@
 // Lines keep the interval of their support along the line in the same way. Boxes are kept
 // in the world frame at association time and not moved by later optimizations; the gap
 // absorbs that correction.
+//
+// Points (key-points, thesis 8.2) have no extent and no orientation: a key-point is near a
+// point landmark when its predicted position lies within `point_distance_m` of the
+// landmark's current estimate, and the nearest such landmark wins. Nothing stops two
+// key-points of one revolution from joining the same landmark; a detector's key-points
+// closer than its support size (NARF's: 1 m) are rare, and the robust kernel takes the
+// worse of the two.
 #pragma once
 
 #include <optional>
@@ -37,6 +44,9 @@ struct AssociationGates {
   double line_direction_rad = 0.17;  // angle between the (unoriented) directions
   double line_distance_m = 0.8;      // distance of the feature's point from the landmark line
   double line_gap_m = 2.0;           // largest gap between the supports along the line
+  // Distance of a key-point from a point landmark: a few times the 5 cm sigma of a key-point,
+  // plus the drift between optimizations, under the ~1 m support that separates key-points.
+  double point_distance_m = 0.5;
 };
 
 // What association needs of a plane landmark, in the world frame.
@@ -65,6 +75,10 @@ std::optional<int> AssociatePlane(const std::vector<PlaneTrack>& tracks,
                                   const maps::features3d::PlaneFeature& world_feature, const AssociationGates& gates);
 std::optional<int> AssociateLine(const std::vector<LineTrack>& tracks, const maps::features3d::LineFeature& world_feature,
                                  const AssociationGates& gates);
+
+// The nearest of `landmarks` (world positions) within gates.point_distance_m, or nullopt.
+std::optional<int> AssociatePoint(const std::vector<Eigen::Vector3d>& landmarks, const Eigen::Vector3d& world_point,
+                                  const AssociationGates& gates);
 
 // Grows the track's extent by an associated feature.
 void ExtendTrack(const maps::features3d::PlaneFeature& world_feature, PlaneTrack& track);

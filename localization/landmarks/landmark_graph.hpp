@@ -1,5 +1,5 @@
 // The factor graph of landmark SLAM (thesis 8.2, graph-based SLAM of thesis 3.4): pose
-// nodes (keyframes, world_T_vehicle), plane and line landmark nodes, and the factors
+// nodes (keyframes, world_T_vehicle), plane, line and point landmark nodes, and the factors
 // between them: odometry between consecutive pose nodes, one observation factor per feature
 // associated with a landmark. Plain data; LandmarkSlam builds it, OptimizeGraph moves its
 // nodes.
@@ -9,7 +9,9 @@
 // singular for a line through its frame's origin and badly scaled far from it (line.hpp);
 // the plane chart couples a tilt with an offset by the lever arm to the origin
 // (landmark_factors.hpp, F2's Jacobian t^T B). Anchored where it was seen, every landmark
-// is a few metres from its origin and off it, on a 1 km drive as on a 50 m one.
+// is a few metres from its origin and off it, on a 1 km drive as on a 50 m one. A point
+// (3D key-point, thesis 8.2) needs no chart, but is anchored alike so that its coordinates
+// stay small and every landmark is handled one way.
 #pragma once
 
 #include <vector>
@@ -44,6 +46,12 @@ struct LineNode {
   int observations = 0;
 };
 
+struct PointNode {
+  Eigen::Isometry3d world_T_anchor = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // in the anchor frame
+  int observations = 0;
+};
+
 // A feature associated with a landmark, in the sensor frame of pose node `pose`.
 struct PlaneObservation {
   int pose = 0;
@@ -61,14 +69,23 @@ struct LineObservation {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // where on the line it was seen
 };
 
+struct PointObservation {
+  int pose = 0;
+  int landmark = 0;
+  Eigen::Vector3d measured = Eigen::Vector3d::Zero();  // the key-point in the sensor frame
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+};
+
 struct LandmarkGraph {
   Eigen::Isometry3d vehicle_T_sensor = Eigen::Isometry3d::Identity();
   std::vector<PoseNode> poses;  // poses[0] is held fixed: the gauge
   std::vector<OdometryFactor> odometry;
   std::vector<PlaneNode> planes;
   std::vector<LineNode> lines;
+  std::vector<PointNode> points;
   std::vector<PlaneObservation> plane_observations;
   std::vector<LineObservation> line_observations;
+  std::vector<PointObservation> point_observations;
 };
 
 }  // namespace flat2d::localization::landmarks

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include "localization/landmarks/point_factor.hpp"
+
 namespace flat2d::localization::landmarks {
 
 namespace {
@@ -27,7 +29,7 @@ LandmarkSlam::LandmarkSlam(const LandmarkSlamOptions& options, const Eigen::Isom
 }
 
 void LandmarkSlam::Add(TimeNs stamp, const Eigen::Isometry3d& odometry_world_T_vehicle,
-                       const maps::features3d::FeatureSet& features) {
+                       const maps::features3d::FeatureSet& features, std::span<const Eigen::Vector3d> keypoints) {
   const auto start = std::chrono::steady_clock::now();
   ++stats_.revolutions;
   const bool new_node = AddPoseNodeIfKeyframe(odometry_world_T_vehicle);
@@ -38,6 +40,7 @@ void LandmarkSlam::Add(TimeNs stamp, const Eigen::Isometry3d& odometry_world_T_v
   const Eigen::Isometry3d node_sensor_T_sensor = sensor_T_vehicle_ * node_T_vehicle * graph_.vehicle_T_sensor;
   for (const PlaneFeature& plane : features.planes) AddPlane(node, node_sensor_T_sensor, plane);
   for (const LineFeature& line : features.lines) AddLine(node, node_sensor_T_sensor, line);
+  for (const Eigen::Vector3d& keypoint : keypoints) AddPoint(node, node_sensor_T_sensor, keypoint);
   if (new_node && ++nodes_since_optimization_ >= options_.optimize_every_nodes) {
     const int nodes = static_cast<int>(graph_.poses.size());
     Optimize(options_.iterations_per_optimization, options_.window_nodes > 0 ? std::max(nodes - options_.window_nodes, 1) : 1);
@@ -137,6 +140,34 @@ void LandmarkSlam::AddLine(int node, const Eigen::Isometry3d& node_sensor_T_sens
   ++stats_.line_factors;
 }
 
+void LandmarkSlam::AddPoint(int node, const Eigen::Isometry3d& node_sensor_T_sensor, const Eigen::Vector3d& keypoint) {
+  if (!keypoint.allFinite()) {
+    ++stats_.rejected_features;
+    return;
+  }
+  const Eigen::Vector3d in_node = node_sensor_T_sensor * keypoint;
+  const Eigen::Isometry3d world_T_sensor = WorldTSensor(node);
+  const Eigen::Vector3d in_world = world_T_sensor * in_node;
+  const std::optional<int> match = AssociatePoint(point_tracks_, in_world, options_.gates);
+  int landmark = 0;
+  if (match) {
+    landmark = *match;
+    ++stats_.associations;
+  } else {
+    landmark = static_cast<int>(graph_.points.size());
+    PointNode created;
+    created.world_T_anchor = AnchorAt(world_T_sensor.translation());
+    created.point = created.world_T_anchor.inverse() * in_world;
+    graph_.points.push_back(created);
+    point_tracks_.push_back(in_world);
+    ++stats_.new_landmarks;
+    stats_.point_landmarks = static_cast<int>(graph_.points.size());
+  }
+  graph_.point_observations.push_back(PointObservation{node, landmark, in_node, PointInformation(options_.point_sigma_m)});
+  ++graph_.points[static_cast<std::size_t>(landmark)].observations;
+  ++stats_.point_factors;
+}
+
 void LandmarkSlam::Optimize(int iterations, int first_free_pose) {
   const OptimizationResult result = OptimizeGraph(graph_, options_.optimizer, iterations, first_free_pose);
   ++stats_.optimizations;
@@ -165,6 +196,7 @@ void LandmarkSlam::RefreshTracks() {
     const Eigen::Vector3d nearest_origin = ClosestPointToOrigin(world);
     track.point = nearest_origin + (track.point - nearest_origin).dot(track.direction) * track.direction;
   }
+  for (std::size_t l = 0; l < graph_.points.size(); ++l) point_tracks_[l] = graph_.points[l].world_T_anchor * graph_.points[l].point;
 }
 
 std::vector<hal::trajectory::StampedPose> LandmarkSlam::Trajectory() const {
@@ -211,6 +243,15 @@ std::vector<LandmarkSlam::LineLandmark> LandmarkSlam::Lines() const {
     lines[l].point = on_line + (mean - on_line).dot(d) * d;
   }
   return lines;
+}
+
+std::vector<LandmarkSlam::PointLandmark> LandmarkSlam::Points() const {
+  std::vector<PointLandmark> points(graph_.points.size());
+  for (std::size_t l = 0; l < points.size(); ++l) {
+    points[l].position = graph_.points[l].world_T_anchor * graph_.points[l].point;
+    points[l].observations = graph_.points[l].observations;
+  }
+  return points;
 }
 
 }  // namespace flat2d::localization::landmarks

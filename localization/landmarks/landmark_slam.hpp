@@ -1,4 +1,4 @@
-// Landmark SLAM with 3D planes and lines (thesis 8.2) as an incremental graph (thesis 3.4):
+// Landmark SLAM with 3D planes, lines and key-points (thesis 8.2) as an incremental graph (thesis 3.4):
 // "each incoming feature can generate either a new factor, or a new node, depending if we
 // can associate it to an existing landmark or not".
 //
@@ -28,9 +28,13 @@
 //     old map; Finish then optimizes the whole graph, which spreads the drift of the loop.
 //     Landmarks seen fewer than optimizer.min_landmark_observations times stay out.
 // Information of each landmark factor comes from the feature's covariance, carried into
-// the factor's error coordinates and floored (feature_measurement.hpp).
+// the factor's error coordinates and floored (feature_measurement.hpp); a key-point's from
+// the stated point_sigma_m (point_factor.hpp).
+// Key-points (3D points in the sensor frame, e.g. NARF's for the thesis' comparison, Fig.
+// 8.5-8.6) go through the same steps as point landmarks, beside or instead of the features.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -58,6 +62,9 @@ struct LandmarkSlamOptions {
   // Poses those optimizations move: the newest window_nodes; older ones hold still. 0: all.
   int window_nodes = 40;
   int final_iterations = 30;           // LM iterations in Finish (stops earlier at convergence)
+  // Per axis, of every key-point: a detector gives a position and no covariance. 5 cm: a
+  // range image pixel of 0.2 deg at 15 m, and the range noise of a Velodyne (~2 cm).
+  double point_sigma_m = 0.05;
 };
 
 struct LandmarkSlamStats {
@@ -65,11 +72,13 @@ struct LandmarkSlamStats {
   int pose_nodes = 0;
   int plane_landmarks = 0;  // created, including those seen once and never solved
   int line_landmarks = 0;
+  int point_landmarks = 0;
   int plane_factors = 0;  // plane observations in the graph
   int line_factors = 0;
+  int point_factors = 0;
   int new_landmarks = 0;  // features that started a landmark
   int associations = 0;   // features that joined an existing landmark
-  int rejected_features = 0;  // not finite or without unit axes: dropped
+  int rejected_features = 0;  // not finite or without unit axes: dropped (key-points: not finite)
   int optimizations = 0;
   int iterations = 0;             // LM steps over every optimization
   int downweighted_factors = 0;   // robust weight < 1/2 at the last optimization
@@ -84,8 +93,10 @@ class LandmarkSlam {
   LandmarkSlam(const LandmarkSlamOptions& options, const Eigen::Isometry3d& vehicle_T_sensor);
 
   // One LiDAR revolution: its time, the vehicle's dead-reckoned pose (world_T_vehicle from
-  // CAN odometry, an SE(3) lift of a planar pose), and its features in the sensor frame.
-  void Add(TimeNs stamp, const Eigen::Isometry3d& odometry_world_T_vehicle, const maps::features3d::FeatureSet& features);
+  // CAN odometry, an SE(3) lift of a planar pose), its features and its key-points in the
+  // sensor frame.
+  void Add(TimeNs stamp, const Eigen::Isometry3d& odometry_world_T_vehicle, const maps::features3d::FeatureSet& features,
+           std::span<const Eigen::Vector3d> keypoints = {});
 
   // The final optimization of the whole graph.
   void Finish();
@@ -108,8 +119,13 @@ class LandmarkSlam {
     Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
     int observations = 0;
   };
+  struct PointLandmark {
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    int observations = 0;
+  };
   std::vector<PlaneLandmark> Planes() const;
   std::vector<LineLandmark> Lines() const;
+  std::vector<PointLandmark> Points() const;
 
   const LandmarkSlamStats& stats() const { return stats_; }
   const LandmarkGraph& graph() const { return graph_; }
@@ -124,6 +140,7 @@ class LandmarkSlam {
   bool AddPoseNodeIfKeyframe(const Eigen::Isometry3d& odometry_world_T_vehicle);
   void AddPlane(int node, const Eigen::Isometry3d& node_sensor_T_sensor, const maps::features3d::PlaneFeature& feature);
   void AddLine(int node, const Eigen::Isometry3d& node_sensor_T_sensor, const maps::features3d::LineFeature& feature);
+  void AddPoint(int node, const Eigen::Isometry3d& node_sensor_T_sensor, const Eigen::Vector3d& keypoint);
   void Optimize(int iterations, int first_free_pose);
   void RefreshTracks();
   Eigen::Isometry3d WorldTSensor(int node) const;
@@ -133,6 +150,7 @@ class LandmarkSlam {
   Eigen::Isometry3d sensor_T_vehicle_;
   std::vector<PlaneTrack> plane_tracks_;  // parallel to graph_.planes
   std::vector<LineTrack> line_tracks_;    // parallel to graph_.lines
+  std::vector<Eigen::Vector3d> point_tracks_;  // world positions, parallel to graph_.points
   std::vector<Revolution> revolutions_;
   Eigen::Isometry3d last_node_odometry_ = Eigen::Isometry3d::Identity();
   int nodes_since_optimization_ = 0;

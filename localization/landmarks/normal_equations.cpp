@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "localization/landmarks/graph_factors.hpp"
+#include "localization/landmarks/point_factor.hpp"
 
 namespace flat2d::localization::landmarks {
 
@@ -63,6 +64,30 @@ void AddBlock(const Block& block, int row, int col, bool diagonal, Triplets* tri
   }
 }
 
+// Each (pose, landmark) block once, at the first active observation that names it.
+template <typename Block, typename Observation>
+void AddPairBlocks(const std::vector<Block>& blocks, const std::vector<int>& factors, const std::vector<int>& pair,
+                   const std::vector<Observation>& observations, const std::vector<int>& landmark_offset,
+                   const VariableLayout& layout, Triplets* triplets) {
+  std::vector<char> written(blocks.size(), 0);
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    const int slot = pair[k];
+    if (slot < 0 || written[static_cast<std::size_t>(slot)]) continue;
+    written[static_cast<std::size_t>(slot)] = 1;
+    const Observation& o = observations[static_cast<std::size_t>(factors[k])];
+    AddBlock(blocks[static_cast<std::size_t>(slot)], landmark_offset[static_cast<std::size_t>(o.landmark)],
+             layout.PoseOffset(o.pose), false, triplets);
+  }
+}
+
+// The landmark diagonals of the solved landmarks.
+template <typename Block>
+void AddLandmarkDiagonals(const std::vector<Block>& diagonal, const std::vector<int>& offset, Triplets* triplets) {
+  for (std::size_t l = 0; l < diagonal.size(); ++l) {
+    if (offset[l] >= 0) AddBlock(diagonal[l], offset[l], offset[l], true, triplets);
+  }
+}
+
 // The J^T W Omega J and J^T W Omega e of one landmark factor into the equations.
 template <int D>
 void Accumulate(const Eigen::Matrix<double, D, 1>& error, const Eigen::Matrix<double, D, 6>& j_pose,
@@ -113,11 +138,15 @@ VariableLayout MakeLayout(const LandmarkGraph& graph, int min_observations, int 
       LandmarkOffsets(graph.planes, graph.plane_observations, min_observations, layout.first_free_pose, 3, &next);
   layout.line_offset =
       LandmarkOffsets(graph.lines, graph.line_observations, min_observations, layout.first_free_pose, 4, &next);
+  layout.point_offset =
+      LandmarkOffsets(graph.points, graph.point_observations, min_observations, layout.first_free_pose, 3, &next);
   layout.dimension = next;
   ActiveFactors(graph.plane_observations, layout.plane_offset, layout.first_free_pose, &layout.plane_factors,
                 &layout.plane_pair, &layout.plane_pairs);
   ActiveFactors(graph.line_observations, layout.line_offset, layout.first_free_pose, &layout.line_factors,
                 &layout.line_pair, &layout.line_pairs);
+  ActiveFactors(graph.point_observations, layout.point_offset, layout.first_free_pose, &layout.point_factors,
+                &layout.point_pair, &layout.point_pairs);
   return layout;
 }
 
@@ -127,12 +156,14 @@ NormalEquations Linearize(const LandmarkGraph& graph, const VariableLayout& layo
   eq.odometry_block.assign(graph.odometry.size(), Matrix6d::Zero());
   eq.plane_diagonal.assign(graph.planes.size(), Eigen::Matrix3d::Zero());
   eq.line_diagonal.assign(graph.lines.size(), Eigen::Matrix4d::Zero());
+  eq.point_diagonal.assign(graph.points.size(), Eigen::Matrix3d::Zero());
   eq.plane_pair_block.assign(static_cast<std::size_t>(layout.plane_pairs), Eigen::Matrix<double, 3, 6>::Zero());
   eq.line_pair_block.assign(static_cast<std::size_t>(layout.line_pairs), Eigen::Matrix<double, 4, 6>::Zero());
+  eq.point_pair_block.assign(static_cast<std::size_t>(layout.point_pairs), Eigen::Matrix<double, 3, 6>::Zero());
   eq.b = Eigen::VectorXd::Zero(layout.dimension);
   LinearizeOdometryFactors(graph, layout, &eq);
   const Matrix6d a = SensorPerturbationOfVehicle(graph.vehicle_T_sensor);
-  Eigen::Matrix<double, 3, 6> unused_plane_pair;
+  Eigen::Matrix<double, 3, 6> unused_pair3;  // a fixed pose's block (planes, points): written, never read
   Eigen::Matrix<double, 4, 6> unused_line_pair;
   for (std::size_t k = 0; k < layout.plane_factors.size(); ++k) {
     const PlaneObservation& o = graph.plane_observations[static_cast<std::size_t>(layout.plane_factors[k])];
@@ -142,7 +173,7 @@ NormalEquations Linearize(const LandmarkGraph& graph, const VariableLayout& layo
         LinearizePlaneObservation(GeometryOf(graph, a, o.pose, node.world_T_anchor), node.plane, o.measured);
     const int slot = layout.plane_pair[k];
     Accumulate<3>(lin.error, lin.jacobian_pose, lin.jacobian_plane, o.information, o.pose, layout.plane_offset[l], layout,
-                  &eq.plane_diagonal[l], slot < 0 ? &unused_plane_pair : &eq.plane_pair_block[static_cast<std::size_t>(slot)],
+                  &eq.plane_diagonal[l], slot < 0 ? &unused_pair3 : &eq.plane_pair_block[static_cast<std::size_t>(slot)],
                   kernel, &eq);
   }
   for (std::size_t k = 0; k < layout.line_factors.size(); ++k) {
@@ -157,6 +188,17 @@ NormalEquations Linearize(const LandmarkGraph& graph, const VariableLayout& layo
                   &eq.line_diagonal[l], slot < 0 ? &unused_line_pair : &eq.line_pair_block[static_cast<std::size_t>(slot)],
                   kernel, &eq);
   }
+  for (std::size_t k = 0; k < layout.point_factors.size(); ++k) {
+    const PointObservation& o = graph.point_observations[static_cast<std::size_t>(layout.point_factors[k])];
+    const auto l = static_cast<std::size_t>(o.landmark);
+    const PointNode& node = graph.points[l];
+    const PointFactorLinearization lin =
+        LinearizePointObservation(GeometryOf(graph, a, o.pose, node.world_T_anchor), node.point, o.measured);
+    const int slot = layout.point_pair[k];
+    Accumulate<3>(lin.error, lin.jacobian_pose, lin.jacobian_point, o.information, o.pose, layout.point_offset[l], layout,
+                  &eq.point_diagonal[l], slot < 0 ? &unused_pair3 : &eq.point_pair_block[static_cast<std::size_t>(slot)],
+                  kernel, &eq);
+  }
   return eq;
 }
 
@@ -166,8 +208,8 @@ Eigen::SparseMatrix<double> Assemble(const NormalEquations& eq, const VariableLa
   // Bound: 21 per pose diagonal, 36 per odometry block, 6 or 10 per landmark diagonal,
   // 18 or 24 per pair block.
   triplets.reserve(static_cast<std::size_t>(57 * layout.free_poses + 10 * static_cast<int>(graph.lines.size()) +
-                                            6 * static_cast<int>(graph.planes.size()) + 18 * layout.plane_pairs +
-                                            24 * layout.line_pairs));
+                                            6 * static_cast<int>(graph.planes.size() + graph.points.size()) +
+                                            18 * (layout.plane_pairs + layout.point_pairs) + 24 * layout.line_pairs));
   for (int p = layout.first_free_pose; p < static_cast<int>(graph.poses.size()); ++p) {
     AddBlock(eq.pose_diagonal[static_cast<std::size_t>(p)], layout.PoseOffset(p), layout.PoseOffset(p), true, &triplets);
   }
@@ -175,31 +217,15 @@ Eigen::SparseMatrix<double> Assemble(const NormalEquations& eq, const VariableLa
     const int from = graph.odometry[f].from;  // free, as is from + 1
     AddBlock(eq.odometry_block[f], layout.PoseOffset(from + 1), layout.PoseOffset(from), false, &triplets);
   }
-  for (std::size_t l = 0; l < graph.planes.size(); ++l) {
-    if (layout.plane_offset[l] >= 0) AddBlock(eq.plane_diagonal[l], layout.plane_offset[l], layout.plane_offset[l], true, &triplets);
-  }
-  for (std::size_t l = 0; l < graph.lines.size(); ++l) {
-    if (layout.line_offset[l] >= 0) AddBlock(eq.line_diagonal[l], layout.line_offset[l], layout.line_offset[l], true, &triplets);
-  }
-  // Each pair block once, at the first observation that names it.
-  std::vector<char> written(static_cast<std::size_t>(layout.plane_pairs), 0);
-  for (std::size_t k = 0; k < layout.plane_factors.size(); ++k) {
-    const int slot = layout.plane_pair[k];
-    if (slot < 0 || written[static_cast<std::size_t>(slot)]) continue;
-    written[static_cast<std::size_t>(slot)] = 1;
-    const PlaneObservation& o = graph.plane_observations[static_cast<std::size_t>(layout.plane_factors[k])];
-    AddBlock(eq.plane_pair_block[static_cast<std::size_t>(slot)], layout.plane_offset[static_cast<std::size_t>(o.landmark)],
-             layout.PoseOffset(o.pose), false, &triplets);
-  }
-  written.assign(static_cast<std::size_t>(layout.line_pairs), 0);
-  for (std::size_t k = 0; k < layout.line_factors.size(); ++k) {
-    const int slot = layout.line_pair[k];
-    if (slot < 0 || written[static_cast<std::size_t>(slot)]) continue;
-    written[static_cast<std::size_t>(slot)] = 1;
-    const LineObservation& o = graph.line_observations[static_cast<std::size_t>(layout.line_factors[k])];
-    AddBlock(eq.line_pair_block[static_cast<std::size_t>(slot)], layout.line_offset[static_cast<std::size_t>(o.landmark)],
-             layout.PoseOffset(o.pose), false, &triplets);
-  }
+  AddLandmarkDiagonals(eq.plane_diagonal, layout.plane_offset, &triplets);
+  AddLandmarkDiagonals(eq.line_diagonal, layout.line_offset, &triplets);
+  AddLandmarkDiagonals(eq.point_diagonal, layout.point_offset, &triplets);
+  AddPairBlocks(eq.plane_pair_block, layout.plane_factors, layout.plane_pair, graph.plane_observations, layout.plane_offset,
+                layout, &triplets);
+  AddPairBlocks(eq.line_pair_block, layout.line_factors, layout.line_pair, graph.line_observations, layout.line_offset,
+                layout, &triplets);
+  AddPairBlocks(eq.point_pair_block, layout.point_factors, layout.point_pair, graph.point_observations, layout.point_offset,
+                layout, &triplets);
   Eigen::SparseMatrix<double> h(layout.dimension, layout.dimension);
   h.setFromTriplets(triplets.begin(), triplets.end());
   return h;
@@ -226,6 +252,13 @@ double Cost(const LandmarkGraph& graph, const VariableLayout& layout, const Kern
     const Eigen::Isometry3d anchor_T_sensor = GeometryOf(graph, Matrix6d::Identity(), o.pose, node.world_T_anchor).AnchorTSensor();
     const std::optional<Eigen::Vector4d> e = LineError(anchor_T_sensor, node.line, o.measured);
     if (e) cost += ApplyKernel(kernel.kernel, kernel.width_sigmas, e->dot(o.information * *e)).cost;
+  }
+  for (const int i : layout.point_factors) {
+    const PointObservation& o = graph.point_observations[static_cast<std::size_t>(i)];
+    const PointNode& node = graph.points[static_cast<std::size_t>(o.landmark)];
+    const Eigen::Isometry3d anchor_T_sensor = GeometryOf(graph, Matrix6d::Identity(), o.pose, node.world_T_anchor).AnchorTSensor();
+    const Eigen::Vector3d e = PointError(anchor_T_sensor, node.point, o.measured);
+    cost += ApplyKernel(kernel.kernel, kernel.width_sigmas, e.dot(o.information * e)).cost;
   }
   return cost;
 }

@@ -4,8 +4,8 @@
 // triangle that Eigen's SimplicialLDLT reads.
 //
 // Steps: VariableLayout numbers the variables (the free pose nodes, 6 entries each; pose 0 is
-// the gauge and always fixed; then the planes, 3 each, and the lines, 4 each, that have enough
-// observations) and gives every (pose, landmark) pair its off-diagonal block once per
+// the gauge and always fixed; then the planes, 3 each, the lines, 4 each, and the points, 3
+// each, that have enough observations) and gives every (pose, landmark) pair its off-diagonal block once per
 // structure; Linearize fills the blocks at the current estimate; Assemble writes them as a
 // sparse matrix whose pattern depends only on the layout, so one symbolic analysis serves
 // every iteration of a solve; Cost evaluates the robust cost alone, for the step test.
@@ -30,15 +30,19 @@ struct VariableLayout {
   int free_poses = 0;
   std::vector<int> plane_offset;  // into dx, or -1 for a plane left out of the solve
   std::vector<int> line_offset;
+  std::vector<int> point_offset;
   int dimension = 0;
   // The observations that touch a free landmark, and per such observation its (pose,
   // landmark) block, or -1 when the pose is fixed.
   std::vector<int> plane_factors;
   std::vector<int> line_factors;
+  std::vector<int> point_factors;
   std::vector<int> plane_pair;  // parallel to plane_factors
   std::vector<int> line_pair;   // parallel to line_factors
+  std::vector<int> point_pair;  // parallel to point_factors
   int plane_pairs = 0;
   int line_pairs = 0;
+  int point_pairs = 0;
 
   bool IsFree(int pose) const { return pose >= first_free_pose; }
   int PoseOffset(int pose) const { return 6 * (pose - first_free_pose); }  // free poses only
@@ -56,8 +60,10 @@ struct NormalEquations {
   std::vector<Eigen::Matrix<double, 6, 6>> odometry_block;  // d(to) x d(from), per factor
   std::vector<Eigen::Matrix3d> plane_diagonal;             // per plane
   std::vector<Eigen::Matrix4d> line_diagonal;
+  std::vector<Eigen::Matrix3d> point_diagonal;
   std::vector<Eigen::Matrix<double, 3, 6>> plane_pair_block;  // d(plane) x d(pose)
   std::vector<Eigen::Matrix<double, 4, 6>> line_pair_block;
+  std::vector<Eigen::Matrix<double, 3, 6>> point_pair_block;
   Eigen::VectorXd b;
   double cost = 0.0;         // sum of rho(e^T Omega e): odometry unweighted, landmarks robust
   int downweighted = 0;      // landmark factors with weight below 1/2: likely wrong associations
