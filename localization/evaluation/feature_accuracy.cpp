@@ -181,6 +181,7 @@ void MatchLine(const maps::features3d::LineFeature& line, const Eigen::Isometry3
   out.poles_found.push_back(static_cast<int>(*best));
   out.direction_error_deg.push_back(std::acos(std::min(1.0, std::abs(direction.z()))) * kRadToDeg);
   out.axis_distance_m.push_back(best_distance);
+  if (best_distance <= truth.poles[*best].radius + 0.05) ++out.lines_near_axis;  // the bound
 }
 
 }  // namespace

@@ -47,6 +47,7 @@ struct RevolutionAccuracy {
   int planes = 0, planes_matched = 0;
   int lines = 0, lines_matched = 0;  // matched: to a pole or a vertical edge
   int lines_on_edges = 0;
+  int lines_near_axis = 0;  // matched to a pole within its radius + 5 cm of the axis
   int on_movers = 0;
   // Indices into SceneLandmarks::faces / poles: in view, and found by a matched detection.
   std::vector<int> faces_in_view, faces_found, poles_in_view, poles_found;

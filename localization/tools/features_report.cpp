@@ -104,6 +104,7 @@ void FeaturesSummary::Add(const RevolutionFeatures& r) {
   sum_.lines += a.lines;
   sum_.lines_matched += a.lines_matched;
   sum_.lines_on_edges += a.lines_on_edges;
+  sum_.lines_near_axis += a.lines_near_axis;
   sum_.on_movers += a.on_movers;
   for (auto [from, to] : {std::pair{&a.normal_error_deg, &sum_.normal_error_deg}, {&a.offset_error_m, &sum_.offset_error_m},
                           {&a.direction_error_deg, &sum_.direction_error_deg}, {&a.axis_distance_m, &sum_.axis_distance_m}}) {
@@ -184,10 +185,13 @@ std::string FeaturesSummary::Json() const {
                   Median(sum_.normal_error_deg), Median(sum_.offset_error_m), sum_.lines, sum_.lines_matched,
                   sum_.lines_on_edges, Ratio(static_cast<std::size_t>(sum_.lines_matched), static_cast<std::size_t>(sum_.lines)),
                   poles_in_view_, poles_found_, Ratio(poles_found_, poles_in_view_));
-    out += Format("\"direction_error_deg_p50\": %.4f, \"axis_distance_m_p50\": %.5f, \"on_movers\": %d, "
+    out += Format("\"direction_error_deg_p50\": %.4f, \"axis_distance_m_p50\": %.5f, \"axis_within_radius_share\": %.4f, "
+                  "\"on_movers\": %d, "
                   "\"faces_seen_3_times\": %zu, \"faces_found_80_percent\": %.4f, \"poles_seen_3_times\": %zu, "
                   "\"poles_found_80_percent\": %.4f}",
-                  Median(sum_.direction_error_deg), Median(sum_.axis_distance_m), sum_.on_movers, faces_considered,
+                  Median(sum_.direction_error_deg), Median(sum_.axis_distance_m),
+                  Ratio(static_cast<std::size_t>(sum_.lines_near_axis), sum_.axis_distance_m.size()), sum_.on_movers,
+                  faces_considered,
                   faces_steady, poles_considered, poles_steady);
   }
   return out + "}\n";
