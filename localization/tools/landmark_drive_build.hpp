@@ -3,7 +3,7 @@
 // found.
 //
 // Steps: (1) every complete revolution deskewed by the CAN odometry into the sensor frame of
-// its first fan (revolution_cloud.hpp); (2) its lines and planes extracted (thesis 8.1,
+// its first fan (deskewed_drive.hpp, shared with the NARF key-point peer); (2) its lines and planes extracted (thesis 8.1,
 // maps/features3d); (3) the features and the odometry pose at the revolution's stamp handed
 // to the landmark graph (localization/landmarks/landmark_slam.hpp: odometry factors between
 // pose nodes, features associated with the landmarks near their prediction or made new
