@@ -147,13 +147,8 @@ std::size_t WriteOutputs(const Args& a, NicpDriveResult& r) {
   if (Status s = hal::cloud::WritePly(out / "model.ply", r.model_points, r.model_normals); !s.ok()) Fail(2, s.error().message);
   if (!a.options.build_map) return 0;
   if (!r.mosaic) Fail(3, a.options.capture.string() + ": no revolution gridded at the tracked poses: nothing to map");
-  std::vector<evaluation::TimedPose> planar;
-  const std::vector<mapping::Keyframe> path = PathOf(r.trajectory, planar);
-  MapOutputOptions output;
-  output.write.created_by = "flat2d-map build --mode nicp (flat2d " FLAT2D_VERSION ")";
-  output.write.source = "drive " + a.options.capture.string() + ", NICP revolution to revolution";
-  output.png = out / "map.png";
-  auto written = WriteBuiltMap(std::move(*r.mosaic), path, planar, out / "map.f2m", output);
+  auto written = WriteTrajectoryMap(std::move(*r.mosaic), r.trajectory, out, "flat2d-map build --mode nicp (flat2d " FLAT2D_VERSION ")",
+                                    "drive " + a.options.capture.string() + ", NICP revolution to revolution");
   if (!written.ok()) Fail(2, written.error().message);
   return written->viewpoints;
 }

@@ -73,4 +73,16 @@ std::vector<mapping::Keyframe> PathOf(const std::vector<hal::trajectory::Stamped
   return path;
 }
 
+Result<MapOutput> WriteTrajectoryMap(maps::ClassGrid mosaic, const std::vector<hal::trajectory::StampedPose>& trajectory,
+                                     const std::filesystem::path& out, const std::string& created_by,
+                                     const std::string& source) {
+  std::vector<evaluation::TimedPose> planar;
+  const std::vector<mapping::Keyframe> path = PathOf(trajectory, planar);
+  MapOutputOptions output;
+  output.write.created_by = created_by;
+  output.write.source = source;
+  output.png = out / "map.png";
+  return WriteBuiltMap(std::move(mosaic), path, planar, out / "map.f2m", output);
+}
+
 }  // namespace flat2d::localization::tools

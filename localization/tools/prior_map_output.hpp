@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "hal/common/error.hpp"
@@ -37,5 +38,11 @@ std::vector<mapping::Keyframe> PathOf(const std::vector<hal::trajectory::Stamped
 Result<MapOutput> WriteBuiltMap(maps::ClassGrid mosaic, const std::vector<mapping::Keyframe>& path,
                                 const std::vector<evaluation::TimedPose>& trajectory,
                                 const std::filesystem::path& out, const MapOutputOptions& options);
+
+// A 3D build's map: `mosaic` (the capture gridded at `trajectory`) written as DIR/map.f2m
+// with DIR/map.png, viewpoints along the trajectory.
+Result<MapOutput> WriteTrajectoryMap(maps::ClassGrid mosaic, const std::vector<hal::trajectory::StampedPose>& trajectory,
+                                     const std::filesystem::path& out, const std::string& created_by,
+                                     const std::string& source);
 
 }  // namespace flat2d::localization::tools
