@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "hal/common/time.hpp"
+#include "localization/peers/span_timer.hpp"
 
 namespace flat2d::localization::peers {
 
@@ -12,9 +13,10 @@ Result<NarfSlamResult> RunNarfSlam(const NarfSlamOptions& options) {
   landmarks::LandmarkSlam slam(options.slam, options.drive.vehicle_T_sensor);
   const maps::features3d::FeatureSet no_features;
   auto walked = tools::WalkDeskewedDrive(options.drive, [&](const tools::DeskewedRevolution& revolution) {
-    const Clock::time_point start = Clock::now();
+    const SpanTimer timer;
     const NarfKeypoints keypoints = DetectNarfKeypoints(revolution.cloud, options.narf);
-    result.keypoints_ms.push_back(MillisecondsSince(start));
+    result.keypoints_ms.push_back(timer.WallMs());
+    result.keypoints_cpu_ms.push_back(timer.CpuMs());
     if (result.revolutions == 0) {
       result.image_width = keypoints.image_width;
       result.image_height = keypoints.image_height;

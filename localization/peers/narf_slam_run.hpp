@@ -36,6 +36,8 @@ struct NarfSlamResult {
   std::vector<int> keypoints;        // per revolution
   std::vector<double> deskew_ms;     // per revolution: the deskewed cloud
   std::vector<double> keypoints_ms;  // per revolution: range image, borders, NARF
+  std::vector<double> keypoints_cpu_ms;  // the same in process CPU time (one thread: unlike the
+                                         // wall time, not inflated by a loaded machine)
   std::vector<double> slam_ms;       // per revolution: the graph's share
   double finish_ms = 0.0;            // the final optimization
 };
