@@ -16,6 +16,7 @@
 #include "localization/evaluation/trajectory_error.hpp"
 #include "localization/evaluation/trajectory_file.hpp"
 #include "localization/peers/narf_slam_run.hpp"
+#include "localization/tools/drift.hpp"
 #include "localization/tools/shipped_config.hpp"
 #include "maps/grid/interpolated_poses.hpp"
 #include "maps/grid/structure_grid_config.hpp"
@@ -114,24 +115,13 @@ void Prepare(Args& a) {
   }
 }
 
-// Open-loop drift against the anchor track, in the plane, as build --mode landmarks reports
-// it (DriftAgainst of flat2d-map): the error at the last pose the track covers over the
-// track's distance to there, and the largest error on the way.
+// Open-loop drift against the anchor track, as build --mode landmarks reports it.
 void PrintDrift(const char* prefix, const std::vector<localization::evaluation::TimedPose>& reference,
                 const std::vector<hal::trajectory::StampedPose>& trajectory) {
-  double distance = 0.0, end_error = 0.0, max_error = 0.0;
-  std::optional<Eigen::Vector2d> last;
-  for (const hal::trajectory::StampedPose& p : trajectory) {
-    localization::Se2 truth;
-    if (!localization::evaluation::PoseAt(reference, static_cast<double>(p.time_ns) * 1e-9, 1.0, truth)) continue;
-    if (last) distance += (truth.translation() - *last).norm();
-    last = truth.translation();
-    end_error = (maps::Flatten(p.time_ns, p.world_T_body).position - truth.translation()).norm();
-    max_error = std::max(max_error, end_error);
-  }
-  if (*prefix == '\0') std::printf(", \"distance_m\": %.3f", distance);
-  std::printf(", \"%sdrift_percent\": %.4f, \"%send_error_m\": %.4f, \"%smax_error_m\": %.4f", prefix,
-              distance > 0.0 ? 100.0 * end_error / distance : 0.0, prefix, end_error, prefix, max_error);
+  const localization::tools::Drift d = localization::tools::DriftAgainst(reference, trajectory);
+  if (*prefix == '\0') std::printf(", \"distance_m\": %.3f", d.distance_m);
+  std::printf(", \"%sdrift_percent\": %.4f, \"%send_error_m\": %.4f, \"%smax_error_m\": %.4f", prefix, d.percent(),
+              prefix, d.end_error_m, prefix, d.max_error_m);
 }
 
 void WriteOutputs(const Args& a, const NarfSlamResult& r) {

@@ -9,7 +9,7 @@
 #include "localization/evaluation/trajectory_error.hpp"
 #include "localization/evaluation/trajectory_file.hpp"
 #include "localization/tools/landmark_drive_build.hpp"
-#include "localization/tools/nicp_drive_build.hpp"
+#include "localization/tools/drift.hpp"
 #include "localization/tools/prior_map_output.hpp"
 #include "localization/tools/shipped_config.hpp"
 #include "maps/features3d/feature_options.hpp"

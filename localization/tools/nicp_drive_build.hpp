@@ -26,6 +26,7 @@
 #include "hal/trajectory/tum_file.hpp"
 #include "hal/velodyne/velodyne_stream.hpp"
 #include "localization/evaluation/relations.hpp"
+#include "localization/tools/drift.hpp"
 #include "localization/registration/frame_registration.hpp"
 #include "localization/registration/nicp_options.hpp"
 #include "maps/grid/class_grid.hpp"
@@ -106,19 +107,5 @@ struct NicpDriveResult {
 // configuration cannot be read, the capture's model is unsupported, or it holds no complete
 // revolution.
 Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options);
-
-// Open-loop drift against a reference track (truth, or the anchor) without alignment: both
-// start at the same pose, so the error at the end over the reference's distance travelled is
-// the drift per metre of a dead-reckoned estimate. In the plane.
-struct Drift {
-  int poses = 0;            // trajectory poses within the reference's time
-  double distance_m = 0.0;  // the reference's path between them
-  double end_error_m = 0.0;
-  double max_error_m = 0.0;
-  double end_heading_error_deg = 0.0;
-  double percent() const { return distance_m > 0.0 ? 100.0 * end_error_m / distance_m : 0.0; }
-};
-Drift DriftAgainst(const std::vector<evaluation::TimedPose>& reference,
-                   const std::vector<hal::trajectory::StampedPose>& trajectory);
 
 }  // namespace flat2d::localization::tools
