@@ -7,7 +7,9 @@
 // structure share a column and, projected onto the ground plane, one spot. Per column, top
 // row first: a point not yet labelled vertical counts the points of the rows below whose
 // ground projections lie within eps_r of its own; more than eps_t and they all are labelled
-// vertical, otherwise the point is removed (index -1, depth +inf). O(rows^2) per column.
+// vertical, otherwise the point is removed (index -1, depth +inf). O(rows^2) per column,
+// so the ground projections are kept as 2D coordinates in the ground plane, one array per
+// axis, and the count runs as a branch-free loop the compiler vectorizes.
 #pragma once
 
 #include <cstddef>
@@ -30,18 +32,16 @@ class VerticalRemoval {
   std::size_t Apply(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& up, range3d::IndexImage& image);
 
  private:
-  // The column's valid rows, their points' ground projections and their labels; sized to
-  // the image's rows once.
-  struct ColumnPoint {
-    int row;
-    Eigen::Vector3f ground;
-  };
   std::size_t ApplyToColumn(int col, range3d::IndexImage& image);
+  // How many of the column's points after v lie within eps_r of v on the ground.
+  std::size_t CountBelow(std::size_t v, float radius_squared) const;
 
   const VerticalRemovalOptions options_;
-  std::vector<ColumnPoint> column_;
+  // The column's valid rows, their points' ground projections (coordinates along two axes
+  // orthogonal to `up`) and their labels; each sized to the image's rows once.
+  std::vector<int> rows_;
+  std::vector<float> ground_x_, ground_y_;
   std::vector<std::uint8_t> vertical_;
-  std::vector<std::size_t> stack_;  // the rows of the current point's stack
 };
 
 }  // namespace flat2d::maps::features3d
