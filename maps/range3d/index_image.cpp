@@ -10,7 +10,7 @@ namespace {
 
 // Points are projected a block at a time: first every point's pixel offset and depth, in
 // loops with no early exit that the compiler can vectorize, then the depth test in order.
-constexpr std::size_t kBlock = 256;
+constexpr std::size_t kBlock = RangeProjection::kMaxBatch;
 
 struct BlockPixels {
   std::array<std::int32_t, kBlock> offset;  // -1: not projected
@@ -66,18 +66,21 @@ void ProjectBlock(const RangeProjection& projection, const Eigen::Vector3f* poin
     }
     return;
   }
-  const Eigen::Matrix3f rotation = camera_T_points.linear();
+  // Structure of arrays in the camera frame, then the batch projection.
+  std::array<std::array<float, kBlock>, 3> p;
+  const Eigen::Matrix3f r = camera_T_points.linear();
+  const Eigen::Vector3f t = camera_T_points.translation();
   for (std::size_t i = 0; i < count; ++i) {
-    out.offset[i] = -1;
-    const Eigen::Vector3f p = camera_T_points * points[i];
-    if (normals != nullptr) {
-      if (normals[i].squaredNorm() < 0.5F) continue;
-      if ((rotation * normals[i]).dot(p) > 0.0F) continue;  // faces away from the viewpoint
-    }
-    const Pixel pixel = projection.Project(p);
-    if (!pixel.valid()) continue;
-    out.offset[i] = pixel.row * projection.cols() + pixel.col;
-    out.depth[i] = pixel.depth;
+    const Eigen::Vector3f q = r * points[i] + t;
+    for (std::size_t axis = 0; axis < 3; ++axis) p[axis][i] = q[static_cast<Eigen::Index>(axis)];
+  }
+  projection.ProjectSpherical(p[0].data(), p[1].data(), p[2].data(), count, out.offset.data(), out.depth.data());
+  if (normals == nullptr) return;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (out.offset[i] < 0) continue;
+    const Eigen::Vector3f q(p[0][i], p[1][i], p[2][i]);
+    // No normal, or facing away from the viewpoint: not seen.
+    if (normals[i].squaredNorm() < 0.5F || (r * normals[i]).dot(q) > 0.0F) out.offset[i] = -1;
   }
 }
 

@@ -1,6 +1,8 @@
 #include "maps/range3d/projection.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cassert>
 
 namespace flat2d::maps::range3d {
 
@@ -61,6 +63,38 @@ RangeProjection RangeProjection::SphericalBinned(int cols, int rows, float min_e
     layout.row_elevation_rad.push_back(max_elevation_rad - (static_cast<float>(row) + 0.5F) * step);
   }
   return Spherical(layout);
+}
+
+void RangeProjection::ProjectSpherical(const float* x, const float* y, const float* z, std::size_t count,
+                                       std::int32_t* offset, float* depth) const {
+  // First pass: the fine elevation bin (in `offset`) and the column, as ProjectSpherical(p)
+  // computes them. Both are floors of values that are >= 0 where valid, so truncation is
+  // the floor there; a bin below 0 is marked -1.
+  assert(count <= kMaxBatch);
+  std::array<std::int32_t, kMaxBatch> column;
+  // Members copied to locals: the stores below could otherwise alias them for the compiler.
+  const auto bins = static_cast<float>(elevation_lut_.size());
+  const float min_elevation = lut_min_elevation_, bins_per_rad = lut_bins_per_rad_, cols_per_rad = cols_per_rad_;
+  for (std::size_t i = 0; i < count; ++i) {
+    const float range_xy_squared = x[i] * x[i] + y[i] * y[i];
+    const float range = std::sqrt(range_xy_squared + z[i] * z[i]);
+    const float elevation = FastAtan2(z[i], std::sqrt(range_xy_squared));
+    const float bin = (elevation - min_elevation) * bins_per_rad;
+    const bool valid = (range > 0.0F) & (bin >= 0.0F) & (bin < bins);
+    // Selects before the conversions: a float outside int's range (a NaN point) must not
+    // be converted.
+    const float col = (FastAtan2(y[i], x[i]) + kPi) * cols_per_rad;
+    offset[i] = static_cast<std::int32_t>(valid ? bin : -1.0F);
+    depth[i] = range;
+    column[i] = static_cast<std::int32_t>(valid ? col : 0.0F);
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    if (offset[i] < 0) continue;
+    const int row = elevation_lut_[static_cast<std::size_t>(offset[i])];
+    int col = column[i];
+    if (col >= cols_) col -= cols_;
+    offset[i] = row < 0 ? -1 : row * cols_ + col;
+  }
 }
 
 Eigen::Vector3f RangeProjection::Unproject(int row, int col, float depth) const {

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -60,6 +61,13 @@ class RangeProjection {
   Pixel Project(const Eigen::Vector3f& p) const {
     return pinhole_ ? ProjectPinhole(p) : ProjectSpherical(p);
   }
+  // Spherical Project of `count` points given as coordinate arrays, the same pixels as
+  // Project one at a time: offset[i] = row * cols + col, or -1 where invalid; depth[i] the
+  // range. The arithmetic runs in a loop without branches that the compiler vectorizes;
+  // only the elevation table look-up is scalar. count <= kMaxBatch.
+  static constexpr std::size_t kMaxBatch = 256;
+  void ProjectSpherical(const float* x, const float* y, const float* z, std::size_t count, std::int32_t* offset,
+                        float* depth) const;
   // pi^-1: the point seen at the centre of pixel (row, col) at `depth`.
   Eigen::Vector3f Unproject(int row, int col, float depth) const;
 
@@ -97,15 +105,22 @@ class RangeProjection {
   // into the octants): a thousandth of a LiDAR column (2.9e-3 rad), at a fifth of libm's
   // cost, which was a quarter of a revolution's feature extraction. Only points within
   // 2e-6 rad of a pixel border can land in the neighbouring pixel.
+  // Written without branches (selects only; 0/0 gives a NaN that the last select drops)
+  // so that batch loops over it vectorize.
   static float FastAtan2(float y, float x) {
     const float ax = std::abs(x), ay = std::abs(y);
     const float big = std::max(ax, ay);
-    if (!(big > 0.0F)) return 0.0F;
     const float a = std::min(ax, ay) / big, s = a * a;
     float r = a * (0.99997726F + s * (-0.33262347F + s * (0.19354346F + s * (-0.11643287F + s * (0.05265332F + s * -0.01172120F)))));
-    if (ay > ax) r = 1.57079637F - r;
-    if (x < 0.0F) r = kPi - r;
-    return y < 0.0F ? -r : r;
+    // Each alternative computed before its select: with trapping maths (GCC's default) the
+    // compiler may not hoist a conditional subtraction itself.
+    const float complement = 1.57079637F - r;
+    r = ay > ax ? complement : r;
+    const float supplement = kPi - r;
+    r = x < 0.0F ? supplement : r;
+    const float negated = -r;
+    r = y < 0.0F ? negated : r;
+    return big > 0.0F ? r : 0.0F;
   }
 
   bool pinhole_ = true;

@@ -1,7 +1,11 @@
 #include "maps/range3d/projection.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +76,42 @@ TEST(RangeProjection, SphericalRoundTripsPixelCentres) {
       EXPECT_EQ(pixel.row, row);
       EXPECT_EQ(pixel.col, col);
       EXPECT_NEAR(pixel.depth, 12.5F, 1e-4F);
+    }
+  }
+}
+
+// The batch projection must give the pixels of Project one at a time, including for points
+// above and below the lasers, at the origin, on the axes (atan2's folds) and NaN points.
+TEST(RangeProjection, SphericalBatchEqualsOneAtATime) {
+  const RangeProjection projection = RangeProjection::Spherical(Hdl32Layout());
+  const unsigned seed = 7;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> coordinate(-60.0F, 60.0F);
+  std::vector<Eigen::Vector3f> points;
+  for (int k = 0; k < 3000; ++k) points.emplace_back(coordinate(rng), coordinate(rng), 0.2F * coordinate(rng));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const Eigen::Vector3f& p : {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(5, 0, 0), Eigen::Vector3f(-5, 0, 0),
+                                  Eigen::Vector3f(0, 5, 0), Eigen::Vector3f(0, -5, 0), Eigen::Vector3f(-5, -0.0F, 0.1F),
+                                  Eigen::Vector3f(3, 3, 0), Eigen::Vector3f(0, 0, 5), Eigen::Vector3f(nan, 1, 1),
+                                  Eigen::Vector3f(1, nan, 1), Eigen::Vector3f(1, 1, nan)}) {
+    points.push_back(p);
+  }
+  for (std::size_t begin = 0; begin < points.size(); begin += RangeProjection::kMaxBatch) {
+    const std::size_t count = std::min(RangeProjection::kMaxBatch, points.size() - begin);
+    std::vector<float> x, y, z;
+    for (std::size_t i = begin; i < begin + count; ++i) {
+      x.push_back(points[i].x()), y.push_back(points[i].y()), z.push_back(points[i].z());
+    }
+    std::vector<std::int32_t> offset(count);
+    std::vector<float> depth(count);
+    projection.ProjectSpherical(x.data(), y.data(), z.data(), count, offset.data(), depth.data());
+    for (std::size_t i = 0; i < count; ++i) {
+      const Pixel one = projection.Project(points[begin + i]);
+      const std::int32_t expected = one.valid() ? one.row * projection.cols() + one.col : -1;
+      ASSERT_EQ(offset[i], expected) << "seed " << seed << ", point " << points[begin + i].transpose();
+      if (one.valid()) {
+        EXPECT_EQ(depth[i], one.depth);
+      }
     }
   }
 }
