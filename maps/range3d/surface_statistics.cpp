@@ -15,9 +15,15 @@ struct Rectangle {
   int row0, col0, row1, col1;
 };
 
+// ceil of a positive float without the libm call SSE2 needs for std::ceil.
+int CeilOfPositive(float value) {
+  const auto truncated = static_cast<int>(value);
+  return static_cast<float>(truncated) < value ? truncated + 1 : truncated;
+}
+
 Rectangle NeighbourhoodOf(const Eigen::Vector2f& half_size, const PixelInterval& interval, int row, int col) {
-  const int half_cols = static_cast<int>(std::ceil(half_size.x()));
-  const int half_rows = static_cast<int>(std::ceil(half_size.y()));
+  const int half_cols = CeilOfPositive(half_size.x());
+  const int half_rows = CeilOfPositive(half_size.y());
   return {std::max(row - half_rows, static_cast<int>(interval.row_min)),
           std::max(col - half_cols, static_cast<int>(interval.col_min)),
           std::min(row + half_rows, static_cast<int>(interval.row_max)),
@@ -26,11 +32,11 @@ Rectangle NeighbourhoodOf(const Eigen::Vector2f& half_size, const PixelInterval&
 
 // Eq. 3.35 from the moments: mean and (biased) covariance.
 Eigen::Matrix3d CovarianceOf(const PointMoments& m) {
-  const double n = m[0];
-  const Eigen::Vector3d mean(m[1] / n, m[2] / n, m[3] / n);
+  const double inverse_n = 1.0 / m[0];
+  const Eigen::Vector3d mean(m[1] * inverse_n, m[2] * inverse_n, m[3] * inverse_n);
   Eigen::Matrix3d second;
   second << m[4], m[5], m[6], m[5], m[7], m[8], m[6], m[8], m[9];
-  return second / n - mean * mean.transpose();
+  return second * inverse_n - mean * mean.transpose();
 }
 
 // The smallest eigenvalue and its unit eigenvector of a covariance (Eq. 5.1), without the
@@ -99,7 +105,7 @@ std::optional<SmallestEigen> VectorOf(const Eigen::Matrix3d& c, const SmallestRo
   const double norm_squared = candidates[best].squaredNorm();
   // A repeated l0 leaves C - l0 I of rank one: no unique direction from cross products.
   if (!(norm_squared > 1e-12 * trace * trace * trace * trace)) return std::nullopt;
-  return SmallestEigen{l, candidates[best] / std::sqrt(norm_squared)};
+  return SmallestEigen{l, candidates[best] * (1.0 / std::sqrt(norm_squared))};
 }
 
 // Normal, curvature and information of point `index` from its covariance and, where found,
