@@ -1,12 +1,12 @@
 #include "localization/graph/graph_init.hpp"
 
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include "localization/graph/anchored_laplacian.hpp"
 #include "localization/graph/graph_costs.hpp"
 
 namespace flat2d::localization::graph {
@@ -40,37 +40,12 @@ void PropagateAlongChain(PoseGraph& graph, const std::vector<long>& chain, std::
   }
 }
 
-// Solves the weighted graph Laplacian system sum w (v_j - v_i - d)^2 with node 0 held at
-// anchor, for `columns` independent right-hand sides d (rows of `deltas` per edge).
-Result<Eigen::MatrixXd> SolveAnchoredLaplacian(const PoseGraph& graph,
-                                               const std::vector<double>& weights,
-                                               const Eigen::MatrixXd& deltas,
-                                               const Eigen::RowVectorXd& anchor) {
-  const auto n = static_cast<Eigen::Index>(graph.nodes.size());
-  std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n - 1, deltas.cols());
-  auto add = [&](Eigen::Index r, Eigen::Index c, double v) {
-    if (r > 0 && c > 0) triplets.emplace_back(r - 1, c - 1, v);
-  };
-  for (std::size_t e = 0; e < graph.betweens.size(); ++e) {
-    const auto i = static_cast<Eigen::Index>(graph.betweens[e].from);
-    const auto j = static_cast<Eigen::Index>(graph.betweens[e].to);
-    const double w = weights[e];
-    add(i, i, w);
-    add(j, j, w);
-    add(i, j, -w);
-    add(j, i, -w);
-    const Eigen::RowVectorXd d = deltas.row(static_cast<Eigen::Index>(e));
-    if (j > 0) rhs.row(j - 1) += w * d;
-    if (i > 0) rhs.row(i - 1) -= w * d;
-    if (i == 0 && j > 0) rhs.row(j - 1) += w * anchor;  // v_0 moved to the right-hand side
-    if (j == 0 && i > 0) rhs.row(i - 1) += w * anchor;
-  }
-  Eigen::SparseMatrix<double> laplacian(n - 1, n - 1);
-  laplacian.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(laplacian);
-  if (ldlt.info() != Eigen::Success) return MakeError("chordal initialization: singular system");
-  return Eigen::MatrixXd(ldlt.solve(rhs));
+// The between factors' node pairs, for SolveAnchoredLaplacian.
+std::vector<EdgeEnds> EdgeEndsOf(const PoseGraph& graph) {
+  std::vector<EdgeEnds> ends;
+  ends.reserve(graph.betweens.size());
+  for (const BetweenFactor& f : graph.betweens) ends.push_back({f.from, f.to});
+  return ends;
 }
 
 }  // namespace
@@ -138,8 +113,9 @@ Status InitializeChordal(PoseGraph& graph) {
     heading_delta(static_cast<Eigen::Index>(e), 0) = z + 2.0 * std::numbers::pi * turns;
   }
   const Se2 anchor = graph.nodes.front().estimate;
+  const std::vector<EdgeEnds> ends = EdgeEndsOf(graph);
   const Result<Eigen::MatrixXd> headings = SolveAnchoredLaplacian(
-      graph, kappa, heading_delta, Eigen::RowVectorXd::Constant(1, chain_heading.front()));
+      graph.nodes.size(), ends, kappa, heading_delta, Eigen::RowVectorXd::Constant(1, chain_heading.front()));
   if (!headings) return headings.error();
   auto heading_of = [&](std::size_t n) {
     return n == 0 ? anchor.theta() : (*headings)(static_cast<Eigen::Index>(n - 1), 0);
@@ -152,7 +128,8 @@ Status InitializeChordal(PoseGraph& graph) {
         (rotation_i.Rotation() * f.measurement.translation()).transpose();
   }
   const Result<Eigen::MatrixXd> positions =
-      SolveAnchoredLaplacian(graph, tau, translation_delta, anchor.translation().transpose());
+      SolveAnchoredLaplacian(graph.nodes.size(), ends, tau, translation_delta,
+                             anchor.translation().transpose());
   if (!positions) return positions.error();
   for (std::size_t n = 1; n < graph.nodes.size(); ++n) {
     const auto row = static_cast<Eigen::Index>(n - 1);

@@ -28,6 +28,8 @@ namespace flat2d::localization::graph {
 
 class NormalEquations {
  public:
+  static constexpr int kBlockSize = 3;  // (x, y, theta) per free node
+
   explicit NormalEquations(const PoseGraph& graph);
 
   // Fills H and b at `estimates` (one per node) and returns the cost there.
