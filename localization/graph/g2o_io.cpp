@@ -57,7 +57,8 @@ Status ParseRecord(const std::vector<std::string_view>& fields, GraphTextBuilder
   }
   if (Is3dTag(tag)) {
     return LineError(source, line,
-                     "3D record " + std::string(tag) + " is not supported (SE(2) graphs only)");
+                     "3D record " + std::string(tag) +
+                         " in an SE(2) graph (2D and 3D records cannot be mixed)");
   }
   return LineError(source, line, "unsupported g2o record type '" + std::string(tag) + "'");
 }

@@ -3,8 +3,8 @@
 //   VERTEX_SE2 id x y theta
 //   EDGE_SE2 i j dx dy dtheta I11 I12 I13 I22 I23 I33   (upper triangle of the information)
 //   FIX id [id ...]
-// '#' starts a comment. The 3D types (VERTEX_SE3:QUAT, EDGE_SE3:QUAT) are reported as
-// unsupported: this module is SE(2). Every error names the source and the line.
+// '#' starts a comment. The 3D types (VERTEX_SE3:QUAT, EDGE_SE3:QUAT) are refused here:
+// g2o_se3_io.hpp reads 3D files. Every error names the source and the line.
 #pragma once
 
 #include <istream>

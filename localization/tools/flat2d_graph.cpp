@@ -1,7 +1,8 @@
-// flat2d-graph: optimize a 2D pose graph file (g2o or TORO) and write the result as g2o.
-// Steps: read (format by extension or content) -> initialize (file values, odometry chain or
-// chordal) -> choose the objective (g2o chi2 or SE-Sync's f) -> sparse GN / LM -> print the
-// initial and final cost in both conventions of REFERENCE_RESULTS.md -> write g2o.
+// flat2d-graph: optimize a pose graph file (2D g2o or TORO, 3D g2o) and write the result as
+// g2o of the same dimension. Steps: read (format by extension or content) -> initialize
+// (file values, odometry chain or chordal) -> choose the objective (g2o chi2 or SE-Sync's f)
+// -> sparse GN / LM in SE(2) or SE(3) -> print the initial and final cost in both
+// conventions of REFERENCE_RESULTS.md -> write g2o.
 // Exit status: 0 ok (also when the solver stopped without converging: see stop_reason),
 // 1 usage or option error, 2 a file cannot be read, is invalid or cannot be written.
 #include <cstdio>
@@ -16,6 +17,10 @@
 #include "localization/graph/graph_file.hpp"
 #include "localization/graph/graph_init.hpp"
 #include "localization/graph/graph_optimizer.hpp"
+#include "localization/graph/g2o_se3_io.hpp"
+#include "localization/graph/se3_costs.hpp"
+#include "localization/graph/se3_graph_optimizer.hpp"
+#include "localization/graph/se3_init.hpp"
 #include "maps/tools/cli_args.hpp"
 
 namespace {
@@ -27,9 +32,10 @@ constexpr std::string_view kTool = "flat2d-graph";
 constexpr const char* kUsage = R"(usage:
   flat2d-graph optimize IN OUT [--init file|odometry|chordal] [--solver gn|lm]
                                [--cost g2o|sesync] [--max-iterations N] [--json]
-      IN                g2o (VERTEX_SE2/EDGE_SE2/FIX) or TORO (VERTEX2/EDGE2) 2D pose graph,
-                        told apart by extension (.g2o, .graph) or content
-      OUT               the optimized graph, g2o format
+      IN                pose graph: 2D g2o (VERTEX_SE2/EDGE_SE2/FIX), 3D g2o
+                        (VERTEX_SE3:QUAT/EDGE_SE3:QUAT/FIX) or 2D TORO (VERTEX2/EDGE2), told
+                        apart by extension (.graph) and the first record
+      OUT               the optimized graph, g2o format of IN's dimension
       --init            file: the file's vertex values, or the odometry chain when it has
                         none (default); odometry: compose edges i -> i+1 from vertex 0;
                         chordal: linear orientations, then linear positions (LAGO-style)
@@ -40,6 +46,7 @@ constexpr const char* kUsage = R"(usage:
       --json            one JSON object on stdout instead of text
 Both costs are printed either way: g2o chi2 = sum e^T L e; SE-Sync f = sum tau |dt|^2 +
 kappa |dR|_F^2 (../shared/data/posegraph/REFERENCE_RESULTS.md, section 1; no factor 1/2).
+In 3D, g2o's error is its own: [translation; quaternion vector part] of inv(z) inv(Xi) Xj.
 )";
 
 struct Options {
@@ -131,55 +138,77 @@ std::string Quoted(std::string_view text) {
   return out;
 }
 
-Costs Score(const PoseGraph& graph) { return {G2oChi2(graph), SeSyncCost(graph)}; }
+// What one optimization did, whatever the graph's dimension.
+struct Summary {
+  GraphFormat format = GraphFormat::kG2o;
+  std::size_t nodes = 0;
+  std::size_t edges = 0;
+  Costs initial{};
+  Costs final_costs{};
+  OptimizationResult result;
+};
 
-std::string Json(const Options& o, GraphFormat format, const PoseGraph& graph, const Costs& initial,
-                 const Costs& final_costs, const OptimizationResult& r) {
+int Dimension(GraphFormat format) { return format == GraphFormat::kG2oSe3 ? 3 : 2; }
+
+std::string Json(const Options& o, const Summary& m) {
+  const OptimizationResult& r = m.result;
   std::ostringstream s;
   s << std::setprecision(10) << "{\"input\": " << Quoted(o.input) << ", \"format\": \""
-    << GraphFormatName(format) << "\", \"output\": " << Quoted(o.output)
-    << ", \"nodes\": " << graph.nodes.size() << ", \"edges\": " << graph.betweens.size()
-    << ", \"init\": \"" << InitializationName(o.init) << "\", \"solver\": \""
-    << (o.solver == Solver::kGaussNewton ? "gn" : "lm") << "\", \"cost\": \""
-    << (o.sesync_cost ? "sesync" : "g2o") << "\", \"initial\": {\"g2o_chi2\": " << initial.g2o_chi2
-    << ", \"sesync_f\": " << initial.sesync_f << "}, \"final\": {\"g2o_chi2\": "
-    << final_costs.g2o_chi2 << ", \"sesync_f\": " << final_costs.sesync_f
+    << GraphFormatName(m.format) << "\", \"dimension\": " << Dimension(m.format)
+    << ", \"output\": " << Quoted(o.output) << ", \"nodes\": " << m.nodes
+    << ", \"edges\": " << m.edges << ", \"init\": \"" << InitializationName(o.init)
+    << "\", \"solver\": \"" << (o.solver == Solver::kGaussNewton ? "gn" : "lm")
+    << "\", \"cost\": \"" << (o.sesync_cost ? "sesync" : "g2o")
+    << "\", \"initial\": {\"g2o_chi2\": " << m.initial.g2o_chi2
+    << ", \"sesync_f\": " << m.initial.sesync_f << "}, \"final\": {\"g2o_chi2\": "
+    << m.final_costs.g2o_chi2 << ", \"sesync_f\": " << m.final_costs.sesync_f
     << "}, \"iterations\": " << r.iterations << ", \"stop_reason\": \""
     << StopReasonName(r.stop_reason) << "\", \"converged\": " << (r.converged() ? "true" : "false")
     << ", \"seconds\": " << r.seconds << "}";
   return s.str();
 }
 
-void PrintText(GraphFormat format, const PoseGraph& graph, const Costs& initial,
-               const Costs& final_costs, const OptimizationResult& r) {
-  std::cout << std::setprecision(8) << "graph:       " << graph.nodes.size() << " nodes, "
-            << graph.betweens.size() << " edges (" << GraphFormatName(format) << ")\n"
-            << "g2o chi2:    " << initial.g2o_chi2 << " -> " << final_costs.g2o_chi2 << "\n"
-            << "SE-Sync f:   " << initial.sesync_f << " -> " << final_costs.sesync_f << "\n"
+void PrintText(const Summary& m) {
+  const OptimizationResult& r = m.result;
+  std::cout << std::setprecision(8) << "graph:       " << m.nodes << " nodes, " << m.edges
+            << " edges (" << GraphFormatName(m.format) << ")\n"
+            << "g2o chi2:    " << m.initial.g2o_chi2 << " -> " << m.final_costs.g2o_chi2 << "\n"
+            << "SE-Sync f:   " << m.initial.sesync_f << " -> " << m.final_costs.sesync_f << "\n"
             << "iterations:  " << r.iterations << " (" << StopReasonName(r.stop_reason) << ")\n"
             << "time:        " << r.seconds << " s\n";
+}
+
+// Read, initialize, optimize the chosen objective, write: the same steps in SE(2) and SE(3),
+// whose graph types have the same free functions.
+template <typename Graph>
+Summary OptimizeFile(const Options& options, GraphFormat format, Result<Graph> graph,
+                     Status (*write)(const Graph&, const std::string&)) {
+  if (!graph) Fail(2, graph.error().message);
+  if (Status s = Initialize(*graph, options.init); !s) Fail(2, s.error().message);
+  Summary summary{format, graph->nodes.size(), graph->betweens.size(),
+                  {G2oChi2(*graph), SeSyncCost(*graph)}, {}, {}};
+  Graph problem = options.sesync_cost ? ToSeSyncProblem(*graph) : *graph;
+  summary.result =
+      Optimize(problem, {.solver = options.solver, .max_iterations = options.max_iterations});
+  for (std::size_t n = 0; n < graph->nodes.size(); ++n) {
+    graph->nodes[n].estimate = problem.nodes[n].estimate;
+  }
+  summary.final_costs = {G2oChi2(*graph), SeSyncCost(*graph)};
+  if (Status s = write(*graph, options.output); !s) Fail(2, s.error().message);
+  return summary;
 }
 
 int Optimize(const Options& options) {
   const Result<GraphFormat> format = DetectGraphFormat(options.input);
   if (!format) Fail(2, format.error().message);
-  Result<PoseGraph> graph = ReadPoseGraphFile(options.input);
-  if (!graph) Fail(2, graph.error().message);
-  if (Status s = Initialize(*graph, options.init); !s) Fail(2, s.error().message);
-  const Costs initial = Score(*graph);
-
-  PoseGraph problem = options.sesync_cost ? ToSeSyncProblem(*graph) : *graph;
-  const OptimizationResult result =
-      Optimize(problem, {.solver = options.solver, .max_iterations = options.max_iterations});
-  for (std::size_t n = 0; n < graph->nodes.size(); ++n) {
-    graph->nodes[n].estimate = problem.nodes[n].estimate;
-  }
-  const Costs final_costs = Score(*graph);
-  if (Status s = WriteG2oFile(*graph, options.output); !s) Fail(2, s.error().message);
+  const Summary summary =
+      *format == GraphFormat::kG2oSe3
+          ? OptimizeFile(options, *format, ReadG2oSe3File(options.input), &WriteG2oSe3File)
+          : OptimizeFile(options, *format, ReadPoseGraphFile(options.input), &WriteG2oFile);
   if (options.json) {
-    std::cout << Json(options, *format, *graph, initial, final_costs, result) << "\n";
+    std::cout << Json(options, summary) << "\n";
   } else {
-    PrintText(*format, *graph, initial, final_costs, result);
+    PrintText(summary);
   }
   return 0;
 }

@@ -1,14 +1,18 @@
 // g2o's 3D records: a round trip keeps ids, poses, information and FIX; malformed lines fail
 // naming the source and the line (missing fields, non-numbers, a quaternion that is not a
 // rotation, an edge to an unknown vertex, 2D records mixed in, information without SE-Sync
-// weights); quaternions off unit norm by rounding are normalized.
+// weights); quaternions off unit norm by rounding are normalized; the file front door tells
+// 3D from 2D g2o.
 #include "localization/graph/g2o_se3_io.hpp"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 
+#include "localization/graph/graph_file.hpp"
 
 namespace flat2d::localization::graph {
 namespace {
@@ -145,6 +149,31 @@ TEST(G2oSe3IoTest, EdgesOnlyFileHasNodesWithoutEstimates) {
   const Se3PoseGraph graph = ReadText(Edge(0, 1) + Edge(1, 2));
   ASSERT_EQ(graph.nodes.size(), 3u);
   EXPECT_FALSE(graph.nodes[1].has_estimate);
+}
+
+TEST(G2oSe3IoTest, FileFrontDoorTellsThreeFromTwoDimensions) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "flat2d_g2o_se3_io_test";
+  std::filesystem::create_directories(dir);
+  const std::string three_d = (dir / "cube.g2o").string();
+  std::ofstream(three_d) << "# header\nFIX 3\n" << kG2oSe3;
+  const std::string no_extension = (dir / "cube").string();
+  std::ofstream(no_extension) << kG2oSe3;
+  const std::string two_d = (dir / "square.g2o").string();
+  std::ofstream(two_d) << "VERTEX_SE2 0 0 0 0\nEDGE_SE2 0 1 1 0 0 1 0 0 1 0 1\n";
+  EXPECT_EQ(*DetectGraphFormat(three_d), GraphFormat::kG2oSe3);
+  EXPECT_EQ(*DetectGraphFormat(no_extension), GraphFormat::kG2oSe3);
+  EXPECT_EQ(*DetectGraphFormat(two_d), GraphFormat::kG2o);
+  EXPECT_EQ(GraphFormatName(GraphFormat::kG2oSe3), "g2o_se3");
+  const Result<PoseGraph> as_2d = ReadPoseGraphFile(three_d);
+  ASSERT_FALSE(as_2d.ok());
+  EXPECT_EQ(as_2d.error().message,
+            three_d + ": an SE(3) pose graph (VERTEX_SE3:QUAT / EDGE_SE3:QUAT), not SE(2)");
+  const Result<Se3PoseGraph> graph = ReadG2oSe3File(three_d);
+  ASSERT_TRUE(graph.ok()) << graph.error().message;
+  EXPECT_EQ(graph->nodes.size(), 3u);
+  EXPECT_EQ(ReadG2oSe3File((dir / "missing.g2o").string()).error().message,
+            (dir / "missing.g2o").string() + ": cannot open");
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

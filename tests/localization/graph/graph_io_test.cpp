@@ -1,6 +1,7 @@
 // g2o and TORO files: round trips keep ids, poses, information and FIX; malformed lines fail
-// with the line number; 3D records are refused; TORO's information is rotated into g2o's
-// frame (checked against the two formats of CSAIL and M3500 shipped in ../shared/data).
+// with the line number; 3D records are refused by the 2D reader (g2o_se3_io_test.cpp reads
+// them); TORO's information is rotated into g2o's frame (checked against the two formats of
+// CSAIL and M3500 shipped in ../shared/data).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -104,7 +105,7 @@ TEST(G2oIoTest, MalformedLinesNameTheLine) {
 
 TEST(G2oIoTest, ThreeDimensionalRecordsAreRefusedClearly) {
   EXPECT_EQ(ErrorOf("VERTEX_SE3:QUAT 0 0 0 0 0 0 0 1\n"),
-            "bad:1: 3D record VERTEX_SE3:QUAT is not supported (SE(2) graphs only)");
+            "bad:1: 3D record VERTEX_SE3:QUAT in an SE(2) graph (2D and 3D records cannot be mixed)");
 }
 
 TEST(ToroIoTest, RoundTripRotatesInformationBackAndForth) {
