@@ -9,6 +9,7 @@
 #include "hal/sim/scene_landmarks.hpp"
 #include "localization/evaluation/trajectory_error_3d.hpp"
 #include "localization/tools/revolution_cloud.hpp"
+#include "maps/features3d/feature_options.hpp"
 #include "maps/range3d/range_frame.hpp"
 
 namespace flat2d::localization::tools {
@@ -29,7 +30,8 @@ class Extractors {
     auto it = extractors_.find(sensor);
     if (it == extractors_.end()) {
       const auto projection = maps::range3d::LidarProjection(sensor, static_cast<int>(options_.columns()));
-      it = extractors_.emplace(sensor, std::make_unique<maps::features3d::FeatureExtractor>(projection, options_)).first;
+      it = extractors_.emplace(sensor, std::make_unique<maps::features3d::FeatureExtractor>(
+                                          projection, maps::features3d::OptionsForSensor(options_, sensor))).first;
     }
     return *it->second;
   }

@@ -6,6 +6,7 @@
 #include "localization/tools/deskewed_drive.hpp"
 #include "localization/tools/grid_run.hpp"
 #include "maps/features3d/feature_extractor.hpp"
+#include "maps/features3d/feature_options.hpp"
 #include "maps/grid/structure_grid_config.hpp"
 #include "maps/range3d/range_frame.hpp"
 
@@ -26,7 +27,7 @@ class LandmarkMapper {
     const maps::range3d::SensorModel sensor = maps::range3d::SensorModelOf(revolution.model);
     if (!extractor_) {
       extractor_.emplace(maps::range3d::LidarProjection(sensor, static_cast<int>(options_.features.columns())),
-                         options_.features);
+                         maps::features3d::OptionsForSensor(options_.features, sensor));
       result_.sensor = std::string(maps::range3d::SensorModelName(sensor));
     }
     const maps::features3d::FeatureSet& features = extractor_->Extract(revolution.cloud.points, up_);

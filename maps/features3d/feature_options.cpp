@@ -38,6 +38,13 @@ class Checker {
 void CheckVertical(const VerticalRemovalOptions& vertical, Checker& check) {
   check.Positive("vertical.ground_radius_m", vertical.ground_radius_m());
   check.AtLeast("vertical.min_points_above", vertical.min_points_above(), 1);
+  for (const auto& [sensor, points] : vertical.min_points_above_by_sensor()) {
+    const auto model = range3d::ParseSensorModel(sensor);
+    check.Require(model.has_value() && *model != range3d::SensorModel::kAuto && *model != range3d::SensorModel::kPinhole &&
+                      *model != range3d::SensorModel::kUnorganized,
+                  "vertical.min_points_above_by_sensor", "unknown LiDAR model \"" + sensor + "\" (vlp16, hdl32e, vlp32c, kitti64)");
+    check.AtLeast("vertical.min_points_above_by_sensor", points, 1);
+  }
 }
 
 void CheckNormals(const NormalOptions& normals, Checker& check) {
@@ -91,6 +98,14 @@ Result<FeatureExtractionOptions> LoadFeatureOptions(const std::filesystem::path&
     return MakeError(path.string() + ": " + valid.error().message);
   }
   return options;
+}
+
+FeatureExtractionOptions OptionsForSensor(const FeatureExtractionOptions& options, range3d::SensorModel sensor) {
+  FeatureExtractionOptions resolved = options;
+  const auto& by_sensor = options.vertical().min_points_above_by_sensor();
+  const auto it = by_sensor.find(std::string(range3d::SensorModelName(sensor)));
+  if (it != by_sensor.end()) resolved.mutable_vertical()->set_min_points_above(it->second);
+  return resolved;
 }
 
 range3d::SurfaceStatisticsOptions StatisticsOptions(const NormalOptions& normals) {

@@ -7,6 +7,7 @@
 
 #include "hal/common/error.hpp"
 #include "maps/features3d/feature_options.pb.h"
+#include "maps/range3d/range_frame.hpp"
 #include "maps/range3d/surface_statistics.hpp"
 
 namespace flat2d::maps::features3d {
@@ -16,6 +17,10 @@ Status ValidateFeatureOptions(const FeatureExtractionOptions& options);
 
 // Parses a text-format file and validates it; errors carry file:line:column or the field.
 Result<FeatureExtractionOptions> LoadFeatureOptions(const std::filesystem::path& path);
+
+// `options` for one sensor model: its entry of vertical.min_points_above_by_sensor, if any,
+// becomes vertical.min_points_above.
+FeatureExtractionOptions OptionsForSensor(const FeatureExtractionOptions& options, range3d::SensorModel sensor);
 
 // The integral-image statistics of 8.1.3 with these normals options (no disc information:
 // the features need only the normal).

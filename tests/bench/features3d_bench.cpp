@@ -61,14 +61,14 @@ std::vector<Eigen::Vector3f> OfficeRevolution(const maps::range3d::RangeProjecti
   return points;
 }
 
-void Run(benchmark::State& state, const std::vector<Eigen::Vector3f>& points,
+void Run(benchmark::State& state, const std::vector<Eigen::Vector3f>& points, maps::range3d::SensorModel sensor,
          const maps::range3d::RangeProjection& projection) {
   const auto options = Shipped(state.range(0) != 0);
   if (!options) {
     state.SkipWithError("shipped features3d.textproto not readable");
     return;
   }
-  FeatureExtractor extractor(projection, *options);
+  FeatureExtractor extractor(projection, maps::features3d::OptionsForSensor(*options, sensor));
   extractor.Extract(points, Eigen::Vector3f::UnitZ());  // warm: buffers sized
   maps::features3d::ExtractionStats sum;
   for (auto _ : state) {
@@ -101,13 +101,13 @@ void BM_FeaturesRealHdl32(benchmark::State& state) {
     return;
   }
   const auto sensor = maps::range3d::DetectLidar(cloud->points);
-  Run(state, cloud->points, maps::range3d::LidarProjection(sensor, kColumns));
+  Run(state, cloud->points, sensor, maps::range3d::LidarProjection(sensor, kColumns));
 }
 BENCHMARK(BM_FeaturesRealHdl32)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 
 void BM_FeaturesSimOfficeHdl32(benchmark::State& state) {
   const auto projection = maps::range3d::LidarProjection(maps::range3d::SensorModel::kHdl32e, kColumns);
-  Run(state, OfficeRevolution(projection), projection);
+  Run(state, OfficeRevolution(projection), maps::range3d::SensorModel::kHdl32e, projection);
 }
 BENCHMARK(BM_FeaturesSimOfficeHdl32)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 

@@ -41,6 +41,12 @@ TEST(FeatureOptions, EachBadValueIsNamed) {
       {[](FeatureExtractionOptions& o) { o.mutable_fitting()->set_line_max_spread(0.0); }, "fitting.line_max_spread"},
       {[](FeatureExtractionOptions& o) { o.mutable_fitting()->set_line_min_roundness(1.0); }, "fitting.line_min_roundness"},
       {[](FeatureExtractionOptions& o) { o.set_columns(10); }, "columns"},
+      {[](FeatureExtractionOptions& o) { (*o.mutable_vertical()->mutable_min_points_above_by_sensor())["vlp64"] = 2; },
+       "vertical.min_points_above_by_sensor"},
+      {[](FeatureExtractionOptions& o) { (*o.mutable_vertical()->mutable_min_points_above_by_sensor())["pinhole"] = 2; },
+       "vertical.min_points_above_by_sensor"},
+      {[](FeatureExtractionOptions& o) { (*o.mutable_vertical()->mutable_min_points_above_by_sensor())["hdl32e"] = 0; },
+       "vertical.min_points_above_by_sensor"},
   };
   for (const Case& c : cases) {
     FeatureExtractionOptions options = *valid;
@@ -49,6 +55,24 @@ TEST(FeatureOptions, EachBadValueIsNamed) {
     ASSERT_FALSE(status.ok()) << c.field;
     EXPECT_EQ(status.error().message.rfind(c.field, 0), 0U) << status.error().message;
   }
+}
+
+// The shipped file gives the VLP-16 its own eps_t; the other LiDARs keep the common one.
+TEST(FeatureOptions, SensorEntriesReplaceTheRemovalThreshold) {
+  auto shipped = LoadFeatureOptions(kShipped);
+  ASSERT_TRUE(shipped.ok());
+  const unsigned common = shipped->vertical().min_points_above();
+  EXPECT_EQ(OptionsForSensor(*shipped, range3d::SensorModel::kVlp16).vertical().min_points_above(), 1U);
+  for (const auto sensor : {range3d::SensorModel::kHdl32e, range3d::SensorModel::kVlp32c, range3d::SensorModel::kKitti64}) {
+    EXPECT_EQ(OptionsForSensor(*shipped, sensor).vertical().min_points_above(), common)
+        << range3d::SensorModelName(sensor);
+  }
+  FeatureExtractionOptions options = *shipped;
+  (*options.mutable_vertical()->mutable_min_points_above_by_sensor())["kitti64"] = 5;
+  ASSERT_TRUE(ValidateFeatureOptions(options).ok());
+  EXPECT_EQ(OptionsForSensor(options, range3d::SensorModel::kKitti64).vertical().min_points_above(), 5U);
+  EXPECT_EQ(OptionsForSensor(options, range3d::SensorModel::kKitti64).segmentation().min_rows(),
+            shipped->segmentation().min_rows());
 }
 
 TEST(FeatureOptions, UnknownFieldFailsWithFileAndLine) {

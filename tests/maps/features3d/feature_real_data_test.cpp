@@ -40,7 +40,7 @@ FeatureSet FeaturesOf(const std::filesystem::path& pcd) {
   EXPECT_TRUE(cloud.ok()) << pcd;
   const range3d::SensorModel sensor = range3d::DetectLidar(cloud->points);
   EXPECT_EQ(sensor, range3d::SensorModel::kVlp16);
-  FeatureExtractor extractor(range3d::LidarProjection(sensor, 2160), Shipped());
+  FeatureExtractor extractor(range3d::LidarProjection(sensor, 2160), OptionsForSensor(Shipped(), sensor));
   return extractor.Extract(cloud->points, Eigen::Vector3f::UnitZ());
 }
 
