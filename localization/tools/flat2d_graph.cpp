@@ -38,7 +38,8 @@ constexpr const char* kUsage = R"(usage:
       OUT               the optimized graph, g2o format of IN's dimension
       --init            file: the file's vertex values, or the odometry chain when it has
                         none (default); odometry: compose edges i -> i+1 from vertex 0;
-                        chordal: linear orientations, then linear positions (LAGO-style)
+                        chordal: linear orientations, then linear positions (LAGO-style;
+                        in 3D the 9 entries of each rotation, projected onto SO(3))
       --solver          lm: Levenberg-Marquardt (default); gn: Gauss-Newton
       --cost            the objective minimized: g2o chi2 with the file's information
                         (default, maximum likelihood) or SE-Sync's f (isotropic weights)

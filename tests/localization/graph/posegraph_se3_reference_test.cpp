@@ -5,8 +5,9 @@
 // We minimize exactly f (ToSeSyncProblem) with LM and require f rounded to 4 significant
 // digits to equal the published value. Starts: the file's vertices for sphere, garage and
 // cubicle; the chordal initialization for torus, whose file vertices lead LM to a local
-// minimum (f = 5.275e4); cubicle also from the chordal start. Each case takes 0.3-2 s in a
-// release build, a few times that under the sanitizers.
+// minimum (f = 5.275e4); cubicle also from the chordal start. Each case takes 0.3-2.5 s in a
+// release build and about six times that under the sanitizers, where cubicle from its file
+// (15 s there, the same optimum as from the chordal start) is left out.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,10 +24,23 @@
 namespace flat2d::localization::graph {
 namespace {
 
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
 struct Case {
   const char* file;
   Initialization init;
-  double published;  // f*, 4 significant digits
+  double published;             // f*, 4 significant digits
+  bool unsanitized_only = false;  // a repeat left out of the slow sanitizer builds
 };
 
 void PrintTo(const Case& c, std::ostream* os) { *os << c.file << " from " << InitializationName(c.init); }
@@ -50,6 +64,7 @@ class Se3ReferenceTest : public ::testing::TestWithParam<Case> {};
 
 TEST_P(Se3ReferenceTest, ReachesThePublishedSeSyncOptimum) {
   const Case& c = GetParam();
+  if (kSanitized && c.unsanitized_only) GTEST_SKIP() << c.file << " from its file: unsanitized builds only";
   FLAT2D_REQUIRE_DATA(path, std::string("posegraph/") + c.file);
   Result<Se3PoseGraph> graph = ReadG2oSe3File(path.string());
   ASSERT_TRUE(graph.ok()) << graph.error().message;
@@ -75,7 +90,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"g2o/sphere2500.g2o", Initialization::kFile, 1.687e3},
                       Case{"g2o/torus3D.g2o", Initialization::kChordal, 2.423e4},
                       Case{"g2o/parking-garage.g2o", Initialization::kFile, 1.263e0},
-                      Case{"g2o/cubicle.g2o", Initialization::kFile, 7.171e2},
+                      Case{"g2o/cubicle.g2o", Initialization::kFile, 7.171e2, true},
                       Case{"g2o/cubicle.g2o", Initialization::kChordal, 7.171e2}),
     Name);
 
