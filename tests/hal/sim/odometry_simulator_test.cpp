@@ -20,6 +20,7 @@
 #include "localization/odometry/can_odometry.hpp"
 #include "localization/odometry/odometry_config.hpp"
 #include "tests/testing/allocation_counter.hpp"
+#include "tests/testing/sanitizer.hpp"
 
 namespace flat2d::hal::sim {
 namespace {
@@ -27,17 +28,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 // Sanitized debug builds run these drives 100 times slower: they check memory, so the
 // ten-minute statistics run fewer seeds there and their spread is asserted only here.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using flat2d::testing::kSanitized;
 
 constexpr TimeNs kEpoch = 1'700'000'000 * kNsPerSecond;  // a Unix time, as the run loop passes
 

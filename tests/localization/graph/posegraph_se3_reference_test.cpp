@@ -20,21 +20,12 @@
 #include "localization/graph/se3_graph_optimizer.hpp"
 #include "localization/graph/se3_init.hpp"
 #include "tests/testing/data_path.hpp"
+#include "tests/testing/sanitizer.hpp"
 
 namespace flat2d::localization::graph {
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using flat2d::testing::kSanitized;
 
 struct Case {
   const char* file;
