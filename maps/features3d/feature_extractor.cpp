@@ -1,6 +1,7 @@
 #include "maps/features3d/feature_extractor.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 
 #include "hal/common/time.hpp"
@@ -36,6 +37,7 @@ const FeatureSet& FeatureExtractor::Extract(const std::vector<Eigen::Vector3f>& 
   cloud_.points.assign(points.begin(), points.end());
   cloud_.Resize(points.size());
   statistics_.Compute(projection_, image_, cloud_);
+  KeepSteepLineDirections(up);
   stats_.normals_ms = MillisecondsSince(start);
 
   start = Clock::now();
@@ -64,6 +66,16 @@ std::size_t FeatureExtractor::DropFarPixels() {
     }
   }
   return left;
+}
+
+// A neighbourhood along a ring (a wall seen where its rows are sparse) is a line too, but
+// by sampling, not by shape: only lines within 45 deg of vertical are the thin poles whose
+// direction region growing may compare (the removal has left vertical structure only).
+void FeatureExtractor::KeepSteepLineDirections(const Eigen::Vector3f& up) {
+  constexpr float kMinSteepness = 0.70710678F;  // cos 45 deg
+  for (Eigen::Vector3f& direction : cloud_.line_directions) {
+    if (std::abs(direction.dot(up)) < kMinSteepness) direction.setZero();
+  }
 }
 
 void FeatureExtractor::FitClusters() {

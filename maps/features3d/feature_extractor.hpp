@@ -4,7 +4,8 @@
 //      columns = azimuth), points beyond max_range_m left out;
 //   2. non-vertical region removal (Algorithm 7, vertical_removal.hpp);
 //   3. normals by integral images over the interval image (8.1.3, maps/range3d's
-//      SurfaceStatistics), only for the points left;
+//      SurfaceStatistics), only for the points left; where a neighbourhood is a steep line
+//      (a thin pole) also its direction, which segmentation compares instead of normals;
 //   4. region growing segmentation (Algorithm 8, region_growing.hpp);
 //   5. a line, else a plane, fitted to each cluster (Eq. 8.4-8.6, feature_fit.hpp).
 //
@@ -56,6 +57,7 @@ class FeatureExtractor {
 
  private:
   std::size_t DropFarPixels();
+  void KeepSteepLineDirections(const Eigen::Vector3f& up);
   void FitClusters();
 
   const range3d::RangeProjection projection_;

@@ -53,6 +53,8 @@ void CheckNormals(const NormalOptions& normals, Checker& check) {
   check.AtLeast("normals.max_half_size_px", normals.max_half_size_px(), 1);
   check.Require(normals.max_half_size_px() <= 256, "normals.max_half_size_px", "must be at most 256");
   check.Fraction("normals.depth_jump_ratio", normals.depth_jump_ratio());
+  check.Require(normals.line_max_middle_share() >= 0.0 && normals.line_max_middle_share() < 1.0 / 3.0,
+                "normals.line_max_middle_share", "must be in [0, 1/3)");
 }
 
 void CheckSegmentation(const SegmentationOptions& segmentation, Checker& check) {
@@ -114,6 +116,7 @@ range3d::SurfaceStatisticsOptions StatisticsOptions(const NormalOptions& normals
   statistics.min_points = static_cast<int>(normals.min_points());
   statistics.max_half_size_px = static_cast<int>(normals.max_half_size_px());
   statistics.depth_jump_ratio = static_cast<float>(normals.depth_jump_ratio());
+  statistics.line_max_middle_share = static_cast<float>(normals.line_max_middle_share());
   return statistics;
 }
 

@@ -1,6 +1,7 @@
 #include "maps/features3d/region_growing.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace flat2d::maps::features3d {
 
@@ -62,13 +63,18 @@ RegionGrowing::Seed RegionGrowing::SeedAt(const range3d::SurfelCloud& cloud, std
   const Eigen::Vector3f& p = cloud.points[seed];
   const auto max_distance =
       static_cast<float>(options_.max_distance_m() + options_.max_distance_per_m() * static_cast<double>(p.norm()));
-  return {p, cloud.normals[seed], max_distance * max_distance};
+  const Eigen::Vector3f direction = cloud.has_line_direction(seed) ? cloud.line_directions[seed] : Eigen::Vector3f::Zero();
+  return {p, cloud.normals[seed], direction, max_distance * max_distance};
 }
 
 bool RegionGrowing::Joins(const Seed& seed, const range3d::SurfelCloud& cloud, std::size_t candidate) const {
   if (!cloud.has_normal(candidate)) return false;
   const bool near = (seed.point - cloud.points[candidate]).squaredNorm() < seed.max_distance_squared;  // Eq. 8.2
-  const bool aligned = seed.normal.dot(cloud.normals[candidate]) > min_normal_dot_;                  // Eq. 8.3
+  // Eq. 8.3; between two points of a line (a thin pole) their directions stand for the
+  // normals, which may turn about it.
+  const bool both_lines = seed.line_direction.squaredNorm() > 0.5F && cloud.has_line_direction(candidate);
+  const bool aligned = both_lines ? std::abs(seed.line_direction.dot(cloud.line_directions[candidate])) > min_normal_dot_
+                                  : seed.normal.dot(cloud.normals[candidate]) > min_normal_dot_;
   return either_ ? (near || aligned) : (near && aligned);
 }
 

@@ -50,7 +50,8 @@ class RegionGrowing {
   struct Seed {
     Eigen::Vector3f point;
     Eigen::Vector3f normal;
-    float max_distance_squared;  // eps_d at its range, squared
+    Eigen::Vector3f line_direction;  // zero unless its neighbourhood is a line
+    float max_distance_squared;      // eps_d at its range, squared
   };
   Seed SeedAt(const range3d::SurfelCloud& cloud, std::size_t seed) const;
   bool Joins(const Seed& seed, const range3d::SurfelCloud& cloud, std::size_t candidate) const;

@@ -108,6 +108,37 @@ std::optional<SmallestEigen> VectorOf(const Eigen::Matrix3d& c, const SmallestRo
   return SmallestEigen{l, candidates[best] * (1.0 / std::sqrt(norm_squared))};
 }
 
+// The largest eigenvector of a covariance whose middle eigenvalue is below `max_middle_share`
+// of the trace (points along a line), else zero. From l0: the other two eigenvalues are the
+// roots of l^2 - s l + p with s = trace - l0, p = minors - l0 s; the vector the largest cross
+// product of two rows of C - l_max I, as for l0.
+Eigen::Vector3f LineDirection(const Eigen::Matrix3d& c, const std::optional<SmallestEigen>& smallest,
+                              float max_middle_share) {
+  const double trace = c.trace();
+  double l0 = 0.0;
+  if (smallest) {
+    l0 = smallest->value;
+  } else {
+    l0 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>().computeDirect(c, Eigen::EigenvaluesOnly).eigenvalues()[0];
+  }
+  const double minors = c(0, 0) * c(1, 1) - c(0, 1) * c(0, 1) + c(0, 0) * c(2, 2) - c(0, 2) * c(0, 2) +
+                        c(1, 1) * c(2, 2) - c(1, 2) * c(1, 2);
+  const double s = trace - l0, p = minors - l0 * s;
+  const double root = std::sqrt(std::max(s * s - 4.0 * p, 0.0));
+  const double middle = 0.5 * (s - root), largest = 0.5 * (s + root);
+  if (!(trace > 0.0) || !(middle < static_cast<double>(max_middle_share) * trace)) return Eigen::Vector3f::Zero();
+  const Eigen::Matrix3d shifted = c - largest * Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d r0 = shifted.row(0), r1 = shifted.row(1), r2 = shifted.row(2);
+  const std::array<Eigen::Vector3d, 3> candidates{r0.cross(r1), r0.cross(r2), r1.cross(r2)};
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < 3; ++k) {
+    if (candidates[k].squaredNorm() > candidates[best].squaredNorm()) best = k;
+  }
+  const double norm_squared = candidates[best].squaredNorm();
+  if (!(norm_squared > 0.0)) return Eigen::Vector3f::Zero();
+  return (candidates[best] * (1.0 / std::sqrt(norm_squared))).cast<float>();
+}
+
 // Normal, curvature and information of point `index` from its covariance and, where found,
 // its smallest eigenpair; elsewhere Eigen's closed form.
 void Assign(const Eigen::Matrix3d& covariance, const std::optional<SmallestEigen>& smallest,
@@ -128,6 +159,9 @@ void Assign(const Eigen::Matrix3d& covariance, const std::optional<SmallestEigen
     sigma = static_cast<float>(lambda[0] / total);
   }
   if (normal.dot(towards_viewpoint) < 0.0F) normal = -normal;
+  if (options.line_max_middle_share > 0.0F && index < cloud.line_directions.size()) {
+    cloud.line_directions[index] = LineDirection(covariance, smallest, options.line_max_middle_share);
+  }
   cloud.normals[index] = normal;
   cloud.curvature[index] = sigma;
   // Omega^s = (Eq. 5.2)^-1 and Omega^n (Eq. 5.14) where flat, the identity elsewhere.
@@ -144,6 +178,7 @@ void AssignSurface(const Eigen::Matrix3d& covariance, const Eigen::Vector3f& tow
 }
 
 void SurfaceStatistics::Compute(const RangeProjection& projection, const IndexImage& image, SurfelCloud& cloud) {
+  if (options_.line_max_middle_share > 0.0F) cloud.line_directions.assign(cloud.size(), Eigen::Vector3f::Zero());
   integral_.Build(image, cloud.points);
   intervals_.Build(image, options_.depth_jump_ratio);
   batch_.clear();

@@ -33,6 +33,10 @@ struct SurfaceStatisticsOptions {
   float depth_jump_ratio = 0.1F;  // interval cut: neighbours 10 % apart in depth are a jump
   float flat_curvature = 0.02F;   // sigma below this: a disc (the thesis leaves it open)
   float disc_epsilon = 1e-3F;     // eps of Eq. 5.2
+  // > 0: where the middle eigenvalue is below this share of the trace the neighbourhood is
+  // a line, and its direction (the largest eigenvector) goes into cloud.line_directions.
+  // 0: none computed (NICP).
+  float line_max_middle_share = 0.0F;
 };
 
 class SurfaceStatistics {

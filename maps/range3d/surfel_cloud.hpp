@@ -24,9 +24,16 @@ struct SurfelCloud {
   std::vector<Eigen::Vector3f> normals;  // unit, towards the viewpoint; zero = undefined
   std::vector<float> curvature;          // sigma = l1 / (l1 + l2 + l3), Eq. 5.1
   std::vector<float> disc_gain;          // g of Omega = I + g n n^T
+  // Only where SurfaceStatisticsOptions::line_max_middle_share asks for them (3D features),
+  // else empty: per point the unit direction of a neighbourhood that is a line (a thin
+  // pole), whose normal is only defined up to a turn about that line; zero elsewhere.
+  std::vector<Eigen::Vector3f> line_directions;
 
   std::size_t size() const { return points.size(); }
   bool has_normal(std::size_t i) const { return normals[i].squaredNorm() > 0.5F; }
+  bool has_line_direction(std::size_t i) const {
+    return !line_directions.empty() && line_directions[i].squaredNorm() > 0.5F;
+  }
 
   // Omega^s = Omega^n of point i (Eq. 5.2 inverted, 5.14), for diagnostics and tests.
   Eigen::Matrix3f Information(std::size_t i) const {

@@ -1,5 +1,7 @@
 #include "maps/features3d/region_growing.hpp"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 namespace flat2d::maps::features3d {
@@ -67,6 +69,37 @@ TEST(RegionGrowing, EitherRuleJoinsNearPoints) {
 }
 
 // A moving seed follows a long wall whose ends are much farther apart than eps_d.
+// A thin post: 2 columns x 4 rows whose normals turn about the post from pixel to pixel (a
+// neighbourhood that is a line fixes no normal). Eq. 8.3 joins no two of them; with their
+// line directions, vertical give or take a few degrees, the post is one cluster.
+TEST(RegionGrowing, LineDirectionsJoinAThinPostWhoseNormalsTurn) {
+  TestCloud t;
+  for (int row = 0; row < 4; ++row) {
+    for (int col = 0; col < 2; ++col) {
+      const float turn = 0.6F * static_cast<float>(2 * row + col);  // 34 deg between neighbours
+      t.Add(row, col, {8.0F, 0.04F * static_cast<float>(col), 1.0F - 0.15F * static_cast<float>(row)},
+            {-std::cos(turn), std::sin(turn), 0.0F});
+    }
+  }
+  RegionGrowing segmentation(Options(SegmentationOptions::BOTH));
+  EXPECT_EQ(segmentation.Segment(t.image, t.cloud).size(), 0U);  // every piece below eps_c
+
+  t.cloud.line_directions.assign(t.cloud.size(), Eigen::Vector3f::Zero());
+  for (std::size_t i = 0; i < t.cloud.size(); ++i) {
+    const float tilt = 0.03F * static_cast<float>(i % 3) * (i % 2 == 0 ? 1.0F : -1.0F);  // up to 3.4 deg
+    t.cloud.line_directions[i] = Eigen::Vector3f(tilt, 0.0F, i % 2 == 0 ? 1.0F : -1.0F).normalized();  // sign free
+  }
+  const Clusters& clusters = segmentation.Segment(t.image, t.cloud);
+  ASSERT_EQ(clusters.size(), 1U);
+  EXPECT_EQ(clusters.size_of(0), 8U);
+
+  // A point whose neighbourhood is no line is judged by its normal, as before.
+  t.cloud.line_directions[3] = Eigen::Vector3f::Zero();
+  const Clusters& split = segmentation.Segment(t.image, t.cloud);
+  ASSERT_EQ(split.size(), 1U);
+  EXPECT_EQ(split.size_of(0), 7U);
+}
+
 TEST(RegionGrowing, MovingSeedGrowsAlongAWall) {
   TestCloud t;
   for (int col = 0; col < 20; ++col) t.Add(1, col, {4.0F, 0.25F * static_cast<float>(col), 0.0F}, {-1, 0, 0});
