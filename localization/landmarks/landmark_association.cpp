@@ -88,11 +88,15 @@ std::optional<int> AssociatePlane(const std::vector<PlaneTrack>& tracks, const P
 }
 
 std::optional<int> AssociateLine(const std::vector<LineTrack>& tracks, const LineFeature& f,
-                                 const AssociationGates& gates) {
+                                 const AssociationGates& gates, double travel_m) {
   std::optional<int> best;
   double best_score = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     const LineTrack& track = tracks[i];
+    if (track.repeated && gates.line_revisit_travel_m > 0.0 &&
+        travel_m - track.last_seen_travel_m > gates.line_revisit_travel_m) {
+      continue;
+    }
     const double cosine = std::min(std::abs(f.direction.dot(track.direction)), 1.0);  // lines have no orientation
     const double angle = std::acos(cosine);
     if (angle > gates.line_direction_rad) continue;
@@ -108,6 +112,20 @@ std::optional<int> AssociateLine(const std::vector<LineTrack>& tracks, const Lin
     }
   }
   return best;
+}
+
+void AddLineTrack(LineTrack track, double travel_m, const AssociationGates& gates, std::vector<LineTrack>& tracks) {
+  track.last_seen_travel_m = travel_m;
+  if (gates.line_distinct_m > 0.0) {
+    for (LineTrack& other : tracks) {
+      const Eigen::Vector3d offset = track.point - other.point;
+      const double distance = (offset - offset.dot(other.direction) * other.direction).norm();
+      if (distance >= gates.line_distinct_m) continue;
+      other.repeated = true;
+      track.repeated = true;
+    }
+  }
+  tracks.push_back(track);
 }
 
 std::optional<int> AssociatePoint(const std::vector<Eigen::Vector3d>& landmarks, const Eigen::Vector3d& world_point,

@@ -44,6 +44,13 @@ struct AssociationGates {
   double line_direction_rad = 0.17;  // angle between the (unoriented) directions
   double line_distance_m = 0.8;      // distance of the feature's point from the landmark line
   double line_gap_m = 2.0;           // largest gap between the supports along the line
+  // Repeated structure (fence posts 2.5 m apart) aliases when the vehicle comes back with
+  // more drift than half its spacing: the feature lands on the neighbour of its landmark.
+  // A line landmark with another within line_distinct_m is therefore met again only within
+  // line_revisit_travel_m of odometry travel since it was last seen; distinct lines (a
+  // street light, a tree) may be met again after any travel. 0: no such rule.
+  double line_distinct_m = 3.0;
+  double line_revisit_travel_m = 20.0;
   // Distance of a key-point from a point landmark: a few times the 5 cm sigma of a key-point,
   // plus the drift between optimizations, under the ~1 m support that separates key-points.
   double point_distance_m = 0.5;
@@ -64,6 +71,8 @@ struct LineTrack {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
   double along_min = 0.0;
   double along_max = 0.0;
+  double last_seen_travel_m = 0.0;  // the odometry travel when a feature last joined it
+  bool repeated = false;            // another line landmark within gates.line_distinct_m
 };
 
 // A track for a feature already in the world frame.
@@ -73,8 +82,12 @@ LineTrack StartLineTrack(const maps::features3d::LineFeature& world_feature);
 // The best track within the gates, or nullopt.
 std::optional<int> AssociatePlane(const std::vector<PlaneTrack>& tracks,
                                   const maps::features3d::PlaneFeature& world_feature, const AssociationGates& gates);
+// `travel_m`: the odometry travel now, for the repeated-structure rule.
 std::optional<int> AssociateLine(const std::vector<LineTrack>& tracks, const maps::features3d::LineFeature& world_feature,
-                                 const AssociationGates& gates);
+                                 const AssociationGates& gates, double travel_m);
+// Adds `track` (a new landmark's, started at `travel_m`), marking it and the lines within
+// gates.line_distinct_m of it as repeated structure.
+void AddLineTrack(LineTrack track, double travel_m, const AssociationGates& gates, std::vector<LineTrack>& tracks);
 
 // The nearest of `landmarks` (world positions) within gates.point_distance_m, or nullopt.
 std::optional<int> AssociatePoint(const std::vector<Eigen::Vector3d>& landmarks, const Eigen::Vector3d& world_point,

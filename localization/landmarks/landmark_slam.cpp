@@ -69,6 +69,7 @@ bool LandmarkSlam::AddPoseNodeIfKeyframe(const Eigen::Isometry3d& odometry_world
   graph_.odometry.push_back(OdometryFactor{from, motion, OdometryInformation(motion, options_.odometry)});
   graph_.poses.push_back(PoseNode{graph_.poses.back().world_T_vehicle * motion});
   last_node_odometry_ = odometry_world_T_vehicle;
+  travel_m_ += motion.translation().norm();
   stats_.pose_nodes = static_cast<int>(graph_.poses.size());
   return true;
 }
@@ -117,11 +118,12 @@ void LandmarkSlam::AddLine(int node, const Eigen::Isometry3d& node_sensor_T_sens
   }
   const Eigen::Isometry3d world_T_sensor = WorldTSensor(node);
   const LineFeature in_world = TransformedFeature(world_T_sensor, in_node);
-  const std::optional<int> match = AssociateLine(line_tracks_, in_world, options_.gates);
+  const std::optional<int> match = AssociateLine(line_tracks_, in_world, options_.gates, travel_m_);
   int landmark = 0;
   if (match) {
     landmark = *match;
     ExtendTrack(in_world, line_tracks_[static_cast<std::size_t>(landmark)]);
+    line_tracks_[static_cast<std::size_t>(landmark)].last_seen_travel_m = travel_m_;
     ++stats_.associations;
   } else {
     landmark = static_cast<int>(graph_.lines.size());
@@ -130,7 +132,7 @@ void LandmarkSlam::AddLine(int node, const Eigen::Isometry3d& node_sensor_T_sens
     // The sensor saw the line from off it, so the anchor is off it too (line.hpp).
     created.line = ToOrthonormal(Transformed(created.world_T_anchor.inverse() * world_T_sensor, measurement->line));
     graph_.lines.push_back(created);
-    line_tracks_.push_back(StartLineTrack(in_world));
+    AddLineTrack(StartLineTrack(in_world), travel_m_, options_.gates, line_tracks_);
     ++stats_.new_landmarks;
     stats_.line_landmarks = static_cast<int>(graph_.lines.size());
   }

@@ -154,6 +154,7 @@ class LandmarkSlam {
   std::vector<Revolution> revolutions_;
   Eigen::Isometry3d last_node_odometry_ = Eigen::Isometry3d::Identity();
   int nodes_since_optimization_ = 0;
+  double travel_m_ = 0.0;  // odometry travel over the pose nodes so far
   LandmarkSlamStats stats_;
 };
 
