@@ -34,21 +34,7 @@ std::string_view StopReasonName(StopReason reason) {
 }
 
 OptimizationResult Optimize(PoseGraph& graph, const OptimizerOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  const bool hold_first = !HasGauge(graph) && !graph.nodes.empty();
-  if (hold_first) graph.nodes.front().fixed = true;
-  NormalEquations equations(graph);
-  std::vector<Se2> estimates;
-  estimates.reserve(graph.nodes.size());
-  for (const PoseNode& node : graph.nodes) estimates.push_back(node.estimate);
-  OptimizerLoop loop(equations, std::move(estimates), options, &RetractSe2);
-  OptimizationResult result = loop.Run();
-  if (hold_first) graph.nodes.front().fixed = false;
-  for (std::size_t n = 0; n < graph.nodes.size(); ++n) {
-    graph.nodes[n].estimate = loop.estimates()[n];
-  }
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
+  return OptimizeNodes<NormalEquations>(graph, HasGauge(graph), options, &RetractSe2);
 }
 
 Result<Eigen::Matrix3d> MarginalCovariance(const Posterior& posterior, std::size_t node) {

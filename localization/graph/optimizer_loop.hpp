@@ -13,7 +13,9 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -128,5 +130,26 @@ class OptimizerLoop {
   Eigen::VectorXd step_;
   SparseLdlt ldlt_;
 };
+
+// Runs the loop on `graph`'s node estimates and writes them back. Without a gauge of its own
+// (`has_gauge` false: no fixed node, no prior) the first node is held for the run. Graph
+// has `nodes` with `estimate` and `fixed`; Equations is built from the graph.
+template <typename Equations, typename Graph, typename RetractFn>
+OptimizationResult OptimizeNodes(Graph& graph, bool has_gauge, const OptimizerOptions& options, RetractFn retract) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool hold_first = !has_gauge && !graph.nodes.empty();
+  if (hold_first) graph.nodes.front().fixed = true;
+  Equations equations(graph);
+  using Pose = std::decay_t<decltype(graph.nodes.front().estimate)>;
+  std::vector<Pose> estimates;
+  estimates.reserve(graph.nodes.size());
+  for (const auto& node : graph.nodes) estimates.push_back(node.estimate);
+  OptimizerLoop loop(equations, std::move(estimates), options, retract);
+  OptimizationResult result = loop.Run();
+  if (hold_first) graph.nodes.front().fixed = false;
+  for (std::size_t n = 0; n < graph.nodes.size(); ++n) graph.nodes[n].estimate = loop.estimates()[n];
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
 
 }  // namespace flat2d::localization::graph

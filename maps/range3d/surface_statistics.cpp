@@ -39,6 +39,25 @@ Eigen::Matrix3d CovarianceOf(const PointMoments& m) {
   return second * inverse_n - mean * mean.transpose();
 }
 
+// Sum of the principal 2x2 minors: the coefficient of l in det(C - l I), and the sum of the
+// eigenvalues' pairwise products.
+double SecondMinors(const Eigen::Matrix3d& c) {
+  return c(0, 0) * c(1, 1) - c(0, 1) * c(0, 1) + c(0, 0) * c(2, 2) - c(0, 2) * c(0, 2) + c(1, 1) * c(2, 2) -
+         c(1, 2) * c(1, 2);
+}
+
+// For C - l I of rank two (l a simple eigenvalue): the largest cross product of two of its
+// rows, which is along l's eigenvector; not normalized.
+Eigen::Vector3d LargestRowCross(const Eigen::Matrix3d& shifted) {
+  const Eigen::Vector3d r0 = shifted.row(0), r1 = shifted.row(1), r2 = shifted.row(2);
+  const std::array<Eigen::Vector3d, 3> candidates{r0.cross(r1), r0.cross(r2), r1.cross(r2)};
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < 3; ++k) {
+    if (candidates[k].squaredNorm() > candidates[best].squaredNorm()) best = k;
+  }
+  return candidates[best];
+}
+
 // The smallest eigenvalue and its unit eigenvector of a covariance (Eq. 5.1), without the
 // trigonometric closed form of all three. det(C - l I) is convex and decreasing left of the
 // smallest root l0, so from l = 0 <= l0 root-finding climbs to l0; Halley's steps (cubic
@@ -60,8 +79,7 @@ class SmallestRoot {
   SmallestRoot() = default;  // nothing to find
   explicit SmallestRoot(const Eigen::Matrix3d& c)
       : trace_(c.trace()),
-        minors_(c(0, 0) * c(1, 1) - c(0, 1) * c(0, 1) + c(0, 0) * c(2, 2) - c(0, 2) * c(0, 2) + c(1, 1) * c(2, 2) -
-                c(1, 2) * c(1, 2)),
+        minors_(SecondMinors(c)),
         det_(c.determinant()),
         failed_(!(trace_ > 0.0) || !(det_ >= 0.0)) {}
 
@@ -95,17 +113,11 @@ class SmallestRoot {
 std::optional<SmallestEigen> VectorOf(const Eigen::Matrix3d& c, const SmallestRoot& root) {
   if (!root.converged()) return std::nullopt;
   const double l = root.value(), trace = c.trace();
-  const Eigen::Matrix3d shifted = c - l * Eigen::Matrix3d::Identity();
-  const Eigen::Vector3d r0 = shifted.row(0), r1 = shifted.row(1), r2 = shifted.row(2);
-  const std::array<Eigen::Vector3d, 3> candidates{r0.cross(r1), r0.cross(r2), r1.cross(r2)};
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < 3; ++k) {
-    if (candidates[k].squaredNorm() > candidates[best].squaredNorm()) best = k;
-  }
-  const double norm_squared = candidates[best].squaredNorm();
+  const Eigen::Vector3d cross = LargestRowCross(c - l * Eigen::Matrix3d::Identity());
+  const double norm_squared = cross.squaredNorm();
   // A repeated l0 leaves C - l0 I of rank one: no unique direction from cross products.
   if (!(norm_squared > 1e-12 * trace * trace * trace * trace)) return std::nullopt;
-  return SmallestEigen{l, candidates[best] * (1.0 / std::sqrt(norm_squared))};
+  return SmallestEigen{l, cross * (1.0 / std::sqrt(norm_squared))};
 }
 
 // The largest eigenvector of a covariance whose middle eigenvalue is below `max_middle_share`
@@ -121,22 +133,14 @@ Eigen::Vector3f LineDirection(const Eigen::Matrix3d& c, const std::optional<Smal
   } else {
     l0 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>().computeDirect(c, Eigen::EigenvaluesOnly).eigenvalues()[0];
   }
-  const double minors = c(0, 0) * c(1, 1) - c(0, 1) * c(0, 1) + c(0, 0) * c(2, 2) - c(0, 2) * c(0, 2) +
-                        c(1, 1) * c(2, 2) - c(1, 2) * c(1, 2);
-  const double s = trace - l0, p = minors - l0 * s;
+  const double s = trace - l0, p = SecondMinors(c) - l0 * s;
   const double root = std::sqrt(std::max(s * s - 4.0 * p, 0.0));
   const double middle = 0.5 * (s - root), largest = 0.5 * (s + root);
   if (!(trace > 0.0) || !(middle < static_cast<double>(max_middle_share) * trace)) return Eigen::Vector3f::Zero();
-  const Eigen::Matrix3d shifted = c - largest * Eigen::Matrix3d::Identity();
-  const Eigen::Vector3d r0 = shifted.row(0), r1 = shifted.row(1), r2 = shifted.row(2);
-  const std::array<Eigen::Vector3d, 3> candidates{r0.cross(r1), r0.cross(r2), r1.cross(r2)};
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < 3; ++k) {
-    if (candidates[k].squaredNorm() > candidates[best].squaredNorm()) best = k;
-  }
-  const double norm_squared = candidates[best].squaredNorm();
+  const Eigen::Vector3d cross = LargestRowCross(c - largest * Eigen::Matrix3d::Identity());
+  const double norm_squared = cross.squaredNorm();
   if (!(norm_squared > 0.0)) return Eigen::Vector3f::Zero();
-  return (candidates[best] * (1.0 / std::sqrt(norm_squared))).cast<float>();
+  return (cross * (1.0 / std::sqrt(norm_squared))).cast<float>();
 }
 
 // Normal, curvature and information of point `index` from its covariance and, where found,
