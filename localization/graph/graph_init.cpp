@@ -138,16 +138,6 @@ Status InitializeChordal(PoseGraph& graph) {
   return Status::Ok();
 }
 
-Status Initialize(PoseGraph& graph, Initialization init) {
-  const bool file_has_all = std::all_of(graph.nodes.begin(), graph.nodes.end(),
-                                        [](const PoseNode& node) { return node.has_estimate; });
-  switch (init) {
-    case Initialization::kFile:
-      return file_has_all ? Status::Ok() : InitializeFromOdometry(graph);
-    case Initialization::kOdometry: return InitializeFromOdometry(graph);
-    case Initialization::kChordal: return InitializeChordal(graph);
-  }
-  return Status::Ok();
-}
+Status Initialize(PoseGraph& graph, Initialization init) { return InitializeBy(graph, init); }
 
 }  // namespace flat2d::localization::graph

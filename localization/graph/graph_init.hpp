@@ -11,6 +11,7 @@
 //    t_j - t_i = R(theta_i) z_t with those orientations. Node 0 anchors both.
 #pragma once
 
+#include <algorithm>
 #include <string_view>
 
 #include "hal/common/error.hpp"
@@ -29,5 +30,20 @@ Status InitializeChordal(PoseGraph& graph);
 // kFile keeps the file's values when every node has one, else falls back to the odometry
 // chain (the file has none, e.g. manhattan.g2o).
 Status Initialize(PoseGraph& graph, Initialization init);
+
+// That dispatch for any graph whose nodes carry `has_estimate` and which has its own
+// InitializeFromOdometry and InitializeChordal (found by argument-dependent lookup).
+template <typename Graph>
+Status InitializeBy(Graph& graph, Initialization init) {
+  const bool file_has_all = std::all_of(graph.nodes.begin(), graph.nodes.end(),
+                                        [](const auto& node) { return node.has_estimate; });
+  switch (init) {
+    case Initialization::kFile:
+      return file_has_all ? Status::Ok() : InitializeFromOdometry(graph);
+    case Initialization::kOdometry: return InitializeFromOdometry(graph);
+    case Initialization::kChordal: return InitializeChordal(graph);
+  }
+  return Status::Ok();
+}
 
 }  // namespace flat2d::localization::graph

@@ -147,16 +147,6 @@ Status InitializeChordal(Se3PoseGraph& graph) {
   return Status::Ok();
 }
 
-Status Initialize(Se3PoseGraph& graph, Initialization init) {
-  const bool file_has_all = std::all_of(graph.nodes.begin(), graph.nodes.end(),
-                                        [](const Se3Node& node) { return node.has_estimate; });
-  switch (init) {
-    case Initialization::kFile:
-      return file_has_all ? Status::Ok() : InitializeFromOdometry(graph);
-    case Initialization::kOdometry: return InitializeFromOdometry(graph);
-    case Initialization::kChordal: return InitializeChordal(graph);
-  }
-  return Status::Ok();
-}
+Status Initialize(Se3PoseGraph& graph, Initialization init) { return InitializeBy(graph, init); }
 
 }  // namespace flat2d::localization::graph
