@@ -1,5 +1,6 @@
 #include "maps/grid/structure_grid_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -104,6 +105,19 @@ Eigen::Isometry3d VehicleFromSensor(const SensorMounting& mounting) {
                                Eigen::AngleAxisd(mounting.roll_deg() * kDegToRad, Eigen::Vector3d::UnitX()))
                                   .toRotationMatrix();
   return vehicle_T_sensor;
+}
+
+SensorMounting MountingOf(const Eigen::Isometry3d& vehicle_T_sensor) {
+  const Eigen::Matrix3d& r = vehicle_T_sensor.linear();
+  SensorMounting mounting;
+  mounting.set_x_m(vehicle_T_sensor.translation().x());
+  mounting.set_y_m(vehicle_T_sensor.translation().y());
+  mounting.set_z_m(vehicle_T_sensor.translation().z());
+  // R = Rz(yaw) Ry(pitch) Rx(roll): r20 = -sin(pitch), r21 / r22 = tan(roll), r10 / r00 = tan(yaw).
+  mounting.set_roll_deg(std::atan2(r(2, 1), r(2, 2)) / kDegToRad);
+  mounting.set_pitch_deg(std::asin(std::clamp(-r(2, 0), -1.0, 1.0)) / kDegToRad);
+  mounting.set_yaw_deg(std::atan2(r(1, 0), r(0, 0)) / kDegToRad);
+  return mounting;
 }
 
 }  // namespace flat2d::maps

@@ -20,5 +20,7 @@ Result<StructureGridOptions> LoadStructureGridOptions(const std::filesystem::pat
 
 // vehicle_T_sensor from the mounting (Z-Y-X Euler angles).
 Eigen::Isometry3d VehicleFromSensor(const SensorMounting& mounting);
+// Its inverse: the mounting (Z-Y-X Euler angles, pitch within +-90 deg) of vehicle_T_sensor.
+SensorMounting MountingOf(const Eigen::Isometry3d& vehicle_T_sensor);
 
 }  // namespace flat2d::maps

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 #include "hal/sim/simulation.hpp"
 #include "hal/sim/simulation_sinks.hpp"
 #include "hal/sim/worlds.hpp"
+#include "maps/grid/structure_grid_config.hpp"
 #include "maps/tools/sim_report.hpp"
 
 namespace {
@@ -45,6 +47,11 @@ constexpr const char* kUsage = R"(usage:
   --rate X              live speed factor (default 1: real time; 0: as fast as possible)
   --rotation-hz HZ      LiDAR rotation rate, 5-20 (default 10)
   --odometry-noise P    mems | fog | none (default mems)
+  --mounting X,Y,Z,ROLL,PITCH,YAW
+                        the LiDAR in the vehicle frame: metres and degrees, Z-Y-X Euler
+                        angles as the structure grid's mounting (default 0,0,1.9,0,0,0);
+                        two runs with one seed and different mountings are one drive seen
+                        by two sensors (flat2d-map calibrate)
   --gnss                put noisy GNSS fixes ($GPRMC) into the position packets
   --gnss-rtk            ... from a survey (RTK) receiver: 2 cm per axis, not 1 m, and seven
                         decimals of minutes (implies --gnss)
@@ -107,6 +114,26 @@ std::uint64_t ParseSeed(const std::string& text) {
   return value;
 }
 
+// X,Y,Z,ROLL,PITCH,YAW (metres, degrees) as vehicle_T_sensor.
+Eigen::Isometry3d ParseMounting(const std::string& text) {
+  std::vector<double> values;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    values.push_back(ParseNumber("--mounting", text.substr(begin, comma - begin)));
+    begin = comma + 1;
+  }
+  if (values.size() != 6) Fail(kUsageError, "--mounting: expected X,Y,Z,ROLL,PITCH,YAW, got " + text);
+  flat2d::maps::SensorMounting mounting;
+  mounting.set_x_m(values[0]);
+  mounting.set_y_m(values[1]);
+  mounting.set_z_m(values[2]);
+  mounting.set_roll_deg(values[3]);
+  mounting.set_pitch_deg(values[4]);
+  mounting.set_yaw_deg(values[5]);
+  return flat2d::maps::VehicleFromSensor(mounting);
+}
+
 // HOST[:PORT] with a dotted-quad host.
 net::Ipv4Endpoint ParseUdp(const std::string& text) {
   const std::size_t colon = text.find(':');
@@ -124,6 +151,7 @@ CliOptions ParseArguments(int argc, char** argv) {
   CliOptions options;
   std::optional<velodyne::Model> sensor;
   std::optional<double> rotation_hz;
+  std::optional<Eigen::Isometry3d> mounting;
   bool gnss = false;
   bool gnss_rtk = false;
   for (int i = 1; i < argc; ++i) {
@@ -160,6 +188,8 @@ CliOptions ParseArguments(int argc, char** argv) {
       if (options.rate < 0.0) Fail(kUsageError, "--rate must not be negative");
     } else if (arg == "--rotation-hz") {
       rotation_hz = ParseNumber(arg, value());
+    } else if (arg == "--mounting") {
+      mounting = ParseMounting(value());
     } else if (arg == "--odometry-noise") {
       const std::string name = value();
       const auto preset = OdometryNoisePreset(name);
@@ -190,6 +220,7 @@ CliOptions ParseArguments(int argc, char** argv) {
   SimulationOptions& sim = options.simulation;
   sim.lidar = DefaultLidarOptions(sensor.value_or(velodyne::Model::kHdl32e));
   if (rotation_hz) sim.lidar.rotation_hz = *rotation_hz;
+  if (mounting) sim.lidar.vehicle_T_sensor = *mounting;
   sim.lidar.gnss.enabled = gnss;
   sim.lidar.gnss.rtk = gnss_rtk;
   if (Status valid = ValidateLidarOptions(sim.lidar); !valid) Fail(kUsageError, valid.error().message);

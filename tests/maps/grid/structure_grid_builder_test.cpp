@@ -1,5 +1,6 @@
 #include "maps/grid/structure_grid_builder.hpp"
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -159,6 +160,26 @@ TEST(StructureGridConfig, ShippedConfigLoads) {
   ASSERT_TRUE(options.ok()) << options.error().message;
   EXPECT_DOUBLE_EQ(options->slope().hazard_slope_deg(), 15.0);
   EXPECT_DOUBLE_EQ(options->fill_in().max_gap_m(), 0.25);
+}
+
+TEST(StructureGridConfig, MountingOfInvertsVehicleFromSensor) {
+  for (const auto& [x, y, z, roll, pitch, yaw] : std::vector<std::array<double, 6>>{
+           {0.0, 0.0, 1.9, 0.0, 0.0, 0.0}, {0.8, -0.3, 1.6, 2.0, -3.0, 30.0}, {-1.2, 0.4, 2.2, -179.0, 89.0, -135.0}}) {
+    SensorMounting mounting;
+    mounting.set_x_m(x);
+    mounting.set_y_m(y);
+    mounting.set_z_m(z);
+    mounting.set_roll_deg(roll);
+    mounting.set_pitch_deg(pitch);
+    mounting.set_yaw_deg(yaw);
+    const SensorMounting back = MountingOf(VehicleFromSensor(mounting));
+    EXPECT_NEAR(back.x_m(), x, 1e-12);
+    EXPECT_NEAR(back.y_m(), y, 1e-12);
+    EXPECT_NEAR(back.z_m(), z, 1e-12);
+    EXPECT_NEAR(back.roll_deg(), roll, 1e-6);
+    EXPECT_NEAR(back.pitch_deg(), pitch, 1e-6);
+    EXPECT_NEAR(back.yaw_deg(), yaw, 1e-6);
+  }
 }
 
 }  // namespace
