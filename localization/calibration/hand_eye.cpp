@@ -55,19 +55,23 @@ Jacobian NumericJacobian(const MotionPair& pair, const Vector6& theta, const Han
     Vector6 plus = theta, minus = theta;
     plus[k] += kDifferenceStep;
     minus[k] -= kDifferenceStep;
+    if (options.fixed[static_cast<std::size_t>(k)]) {
+      j.col(k).setZero();
+      continue;
+    }
     j.col(k) = (WhitenedError(pair, PoseOf(plus), options) - WhitenedError(pair, PoseOf(minus), options)) / (2.0 * kDifferenceStep);
   }
   return j;
 }
 
-// Huber while the guess is still far; then the pairs beyond the threshold (failed
-// registrations, wheel slip) are left out, as a Huber kernel alone still lets a tenth of
-// the pairs 1 m off pull the rotation by a tenth of a degree.
+// Huber while the guess is still far; then the pairs beyond the threshold there (failed
+// registrations, wheel slip) are left out and the rest solved by plain least squares, as a
+// Huber kernel alone still lets a tenth of the pairs 1 m off pull the rotation by a tenth
+// of a degree. The set is fixed for the second stage, so that it converges.
 enum class Kernel { kHuber, kInliersOnly };
 
 double Weight(double norm, double threshold, Kernel kernel) {
-  if (norm <= threshold) return 1.0;
-  return kernel == Kernel::kHuber ? threshold / norm : 0.0;
+  return kernel == Kernel::kInliersOnly || norm <= threshold ? 1.0 : threshold / norm;
 }
 
 struct NormalEquations {
@@ -76,13 +80,16 @@ struct NormalEquations {
   double chi2 = 0.0;  // robust
 };
 
-NormalEquations Linearize(std::span<const MotionPair> pairs, const Vector6& theta, const HandEyeOptions& options, Kernel kernel) {
+// Over the pairs whose `used` is set.
+NormalEquations Linearize(std::span<const MotionPair> pairs, const std::vector<bool>& used, const Vector6& theta,
+                          const HandEyeOptions& options, Kernel kernel) {
   NormalEquations n;
   const Eigen::Isometry3d pose = PoseOf(theta);
-  for (const MotionPair& pair : pairs) {
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (!used[i]) continue;
+    const MotionPair& pair = pairs[i];
     const Vector6 e = WhitenedError(pair, pose, options);
     const double w = Weight(e.norm(), options.huber_threshold, kernel);
-    if (w == 0.0) continue;
     const Jacobian j = NumericJacobian(pair, theta, options);
     n.h.noalias() += w * j.transpose() * j;
     n.g.noalias() += w * j.transpose() * e;
@@ -146,11 +153,19 @@ void Uncertainty(const ScaledInformation& s, double variance_factor, HandEyeResu
   }
 }
 
-void Residuals(std::span<const MotionPair> pairs, const Eigen::Isometry3d& pose, const HandEyeOptions& options, HandEyeResult& result) {
+// The pairs within the threshold of `pose`.
+std::vector<bool> Inliers(std::span<const MotionPair> pairs, const Eigen::Isometry3d& pose, const HandEyeOptions& options) {
+  std::vector<bool> inliers(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) inliers[i] = WhitenedError(pairs[i], pose, options).norm() <= options.huber_threshold;
+  return inliers;
+}
+
+void Residuals(std::span<const MotionPair> pairs, const std::vector<bool>& inliers, const Eigen::Isometry3d& pose,
+               const HandEyeOptions& options, HandEyeResult& result) {
   double translation = 0.0, rotation = 0.0;
-  for (const MotionPair& pair : pairs) {
-    const Vector6 e = WhitenedError(pair, pose, options);
-    if (e.norm() > options.huber_threshold) continue;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (!inliers[i]) continue;
+    const Vector6 e = WhitenedError(pairs[i], pose, options);
     ++result.inliers;
     translation += (e.head<3>() * options.sigma_translation_m).squaredNorm();
     rotation += (e.tail<3>() * options.sigma_rotation_rad).squaredNorm();
@@ -179,26 +194,28 @@ Result<HandEyeResult> SolveHandEye(std::span<const MotionPair> pairs, const Eige
   HandEyeResult result;
   result.pairs = static_cast<int>(pairs.size());
   Vector6 theta = ParametersOf(initial_vehicle_T_sensor);
-  NormalEquations n = Linearize(pairs, theta, options, Kernel::kHuber);
+  std::vector<bool> used(pairs.size(), true);
+  NormalEquations n = Linearize(pairs, used, theta, options, Kernel::kHuber);
   // Under 1 (whitened error per metre or radian): no component is known to within 1 m or 1 rad.
   if (!(n.h.diagonal().maxCoeff() >= 1.0)) {
     return MakeError("hand-eye calibration: the motions constrain no component (did the vehicle move?)");
   }
   ScaledInformation information = Decompose(n.h, options);
   for (const Kernel kernel : {Kernel::kHuber, Kernel::kInliersOnly}) {
-    n = Linearize(pairs, theta, options, kernel);
+    if (kernel == Kernel::kInliersOnly) used = Inliers(pairs, PoseOf(theta), options);
+    n = Linearize(pairs, used, theta, options, kernel);
     information = Decompose(n.h, options);
     for (int i = 0; i < options.max_iterations; ++i) {
       const Vector6 step = Step(information, n.g);
       theta += step;
       ++result.iterations;
-      n = Linearize(pairs, theta, options, kernel);
+      n = Linearize(pairs, used, theta, options, kernel);
       information = Decompose(n.h, options);
       if (information.scale.cwiseInverse().cwiseProduct(step).norm() < options.convergence_step) break;
     }
   }
   result.vehicle_T_sensor = PoseOf(theta);
-  Residuals(pairs, result.vehicle_T_sensor, options, result);
+  Residuals(pairs, used, result.vehicle_T_sensor, options, result);
   const double dof = std::max(6.0 * result.inliers - 6.0, 1.0);
   Uncertainty(information, n.chi2 / dof, result);
   return result;

@@ -34,12 +34,15 @@ struct HandEyeOptions {
   double sigma_rotation_rad = 0.0035;
   double huber_threshold = 3.0;  // on the whitened error's norm; beyond it after the first stage: left out
   int max_iterations = 30;  // per stage (Huber, then inliers only)
-  double convergence_step = 1e-9;  // stop when the scaled step is smaller
+  double convergence_step = 1e-6;  // stop when the step, in standard deviations, is smaller
   // A direction of the (Jacobi-scaled) information is unconstrained when its eigenvalue is
   // under this share of the largest; a component is unobservable when such directions hold
   // more than half of it.
   double null_eigenvalue_share = 1e-6;
   int min_pairs = 10;
+  // Components known otherwise (the ground plane's roll, pitch and height) stay at the
+  // initial value and are reported unobservable.
+  std::array<bool, 6> fixed{};
 };
 
 // The mounting's components in the order the solver uses.

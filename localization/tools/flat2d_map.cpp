@@ -21,6 +21,7 @@
 #include "localization/tools/nicp_build_command.hpp"
 #include "localization/tools/nicp_drive_command.hpp"
 #include "localization/tools/prior_map_output.hpp"
+#include "localization/tools/calibrate_command.hpp"
 #include "localization/tools/features_command.hpp"
 #include "localization/tools/landmark_drive_command.hpp"
 #include "localization/tools/register_command.hpp"
@@ -51,6 +52,7 @@ constexpr const char* kUsage = R"(usage:
   flat2d-map build --mode nicp DRIVE.pcap --out DIR [--can LOG --dbc DBC --odometry CONFIG] [options]
   flat2d-map register SOURCE TARGET [--init FILE] [--method M] [--json] [options]
   flat2d-map features INPUT [--revolution N] [--json] [--png OUT] [options]
+  flat2d-map calibrate DRIVE [DRIVE2] [--json] [options]
   flat2d-map build --mode landmarks DRIVE.pcap --out DIR --can LOG --dbc DBC --odometry CONFIG [options]
 
 build: keyframes every --keyframe-distance metres or --keyframe-angle radians, each
@@ -457,10 +459,11 @@ int main(int argc, char** argv) {
   if (command == "render") return Render(argc - 2, argv + 2);
   if (command == "register") return localization::tools::RegisterCommand(argc - 2, argv + 2);
   if (command == "features") return localization::tools::FeaturesCommand(argc - 2, argv + 2);
+  if (command == "calibrate") return localization::tools::CalibrateCommand(argc - 2, argv + 2);
   if (command == "--help" || command == "-h") {
     std::cout << kUsage << localization::tools::kNicpBuildUsage << localization::tools::kNicpDriveUsage
               << localization::tools::kRegisterUsage << localization::tools::kFeaturesUsage
-              << localization::tools::kLandmarkDriveUsage;
+              << localization::tools::kLandmarkDriveUsage << localization::tools::kCalibrateUsage;
     return 0;
   }
   Fail(1, std::string("unknown or missing command\n") + kUsage);

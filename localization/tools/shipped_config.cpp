@@ -23,4 +23,8 @@ std::string ShippedFeaturesConfig() {
   return FirstReadable(FLAT2D_INSTALLED_FEATURES_CONFIG, FLAT2D_SOURCE_FEATURES_CONFIG);
 }
 
+std::string ShippedSimOdometryConfig() {
+  return FirstReadable(FLAT2D_INSTALLED_SIM_ODOMETRY_CONFIG, FLAT2D_SOURCE_SIM_ODOMETRY_CONFIG);
+}
+
 }  // namespace flat2d::localization

@@ -12,4 +12,7 @@ std::string ShippedGridConfig();
 // The 3D feature extraction options `flat2d-map features` uses without --features-config.
 std::string ShippedFeaturesConfig();
 
+// The simulator vehicle's odometry model (flat2d-sim's drives).
+std::string ShippedSimOdometryConfig();
+
 }  // namespace flat2d::localization
