@@ -42,6 +42,11 @@ flat2d-sim --out writes them) or a capture file with --can and --dbc.
   --pair-distance M --pair-angle RAD
                         a motion pair spans M metres or RAD radians of the vehicle's
                         motion (default 1, 0.1)
+  --reconstruction-revolutions N
+                        with DRIVE2: each reconstruction holds the first N revolutions
+                        (default 30)
+  --reconstruction-radius M
+                        ... and its normals are fitted over M (default 0.5)
   --max-frames N        only the first N complete revolutions of each drive
   --json                one JSON object: vehicle_T_sensor (DRIVE's), sensors (per drive:
                         drive, sensor, frames, failures, pairs, inliers, iterations,
@@ -106,6 +111,8 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--pair-angle") a.options.pair_angle_rad = number();
     else if (arg == "--max-frames") a.options.tracking.max_revolutions = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 2, 1 << 30));
     else if (arg == "--no-ground") a.options.use_ground = false;
+    else if (arg == "--reconstruction-revolutions") a.options.reconstruction_revolutions = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1 << 20));
+    else if (arg == "--reconstruction-radius") a.options.reconstruction_radius_m = static_cast<float>(number());
     else if (arg == "--json") a.json = true;
     else if (!arg.starts_with("--") && positional < 2) a.drives[positional++].path = std::string(arg);
     else Fail(1, "calibrate: unknown argument " + std::string(arg) + "\n" + kCalibrateUsage);
