@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include <Eigen/Eigenvalues>
@@ -177,20 +178,9 @@ void Residuals(std::span<const MotionPair> pairs, const std::vector<bool>& inlie
 
 bool Finite(const Eigen::Isometry3d& pose) { return pose.matrix().allFinite(); }
 
-}  // namespace
-
-Result<HandEyeResult> SolveHandEye(std::span<const MotionPair> pairs, const Eigen::Isometry3d& initial_vehicle_T_sensor,
-                                   const HandEyeOptions& options) {
-  if (std::ssize(pairs) < options.min_pairs) {
-    return MakeError("hand-eye calibration: " + std::to_string(pairs.size()) + " motion pairs, fewer than " +
-                     std::to_string(options.min_pairs) + ": drive further, with turns");
-  }
-  if (!Finite(initial_vehicle_T_sensor)) return MakeError("hand-eye calibration: the initial mounting is not finite");
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    if (!Finite(pairs[i].sensor_motion) || !Finite(pairs[i].vehicle_motion)) {
-      return MakeError("hand-eye calibration: motion pair " + std::to_string(i) + " is not finite");
-    }
-  }
+// One solve with options.fixed held at the initial values.
+Result<HandEyeResult> Solve(std::span<const MotionPair> pairs, const Eigen::Isometry3d& initial_vehicle_T_sensor,
+                            const HandEyeOptions& options) {
   HandEyeResult result;
   result.pairs = static_cast<int>(pairs.size());
   Vector6 theta = ParametersOf(initial_vehicle_T_sensor);
@@ -219,6 +209,42 @@ Result<HandEyeResult> SolveHandEye(std::span<const MotionPair> pairs, const Eige
   const double dof = std::max(6.0 * result.inliers - 6.0, 1.0);
   Uncertainty(information, n.chi2 / dof, result);
   return result;
+}
+
+}  // namespace
+
+Result<HandEyeResult> SolveHandEye(std::span<const MotionPair> pairs, const Eigen::Isometry3d& initial_vehicle_T_sensor,
+                                   const HandEyeOptions& options) {
+  if (std::ssize(pairs) < options.min_pairs) {
+    return MakeError("hand-eye calibration: " + std::to_string(pairs.size()) + " motion pairs, fewer than " +
+                     std::to_string(options.min_pairs) + ": drive further, with turns");
+  }
+  if (!Finite(initial_vehicle_T_sensor)) return MakeError("hand-eye calibration: the initial mounting is not finite");
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (!Finite(pairs[i].sensor_motion) || !Finite(pairs[i].vehicle_motion)) {
+      return MakeError("hand-eye calibration: motion pair " + std::to_string(i) + " is not finite");
+    }
+  }
+  // Components the drive barely constrains (x and y on a straight drive, where only the
+  // gyro's noise turns the vehicle) would come out metres off: held at the guess instead,
+  // the worst first (its uncertainty inflates the ones it correlates with), one solve
+  // after another, until every free one is known within the limits.
+  HandEyeOptions held = options;
+  for (;;) {
+    auto result = Solve(pairs, initial_vehicle_T_sensor, held);
+    if (!result.ok()) return result;
+    std::optional<std::size_t> worst;
+    double worst_ratio = 1.0;
+    for (std::size_t c = 0; c < 6; ++c) {
+      const double ratio = result->sigma[c] / (c < 3 ? options.max_sigma_m : options.max_sigma_deg);
+      if (!held.fixed[c] && result->observable[c] && ratio > worst_ratio) {
+        worst = c;
+        worst_ratio = ratio;
+      }
+    }
+    if (!worst) return result;
+    held.fixed[*worst] = true;
+  }
 }
 
 std::vector<MotionPair> MotionPairs(std::span<const Eigen::Isometry3d> world_T_sensor,

@@ -40,6 +40,10 @@ struct HandEyeOptions {
   // more than half of it.
   double null_eigenvalue_share = 1e-6;
   int min_pairs = 10;
+  // A component whose 1-sigma comes out above these is held at the guess and reported
+  // unobservable: the drive does not determine it well enough to replace a measured guess.
+  double max_sigma_m = 0.05;
+  double max_sigma_deg = 0.5;
   // Components known otherwise (the ground plane's roll, pitch and height) stay at the
   // initial value and are reported unobservable.
   std::array<bool, 6> fixed{};

@@ -36,8 +36,6 @@ Result<TrackedDrive> Track(const CalibrateOptions& options, const CalibrationDri
   tracking.planar = false;
   tracking.build_map = false;
   tracking.anchor.clear();
-  tracking.model_every = 1;
-  tracking.model_stride = options.reconstruction_stride;
   auto tracked = TrackDriveByNicp(tracking);
   if (!tracked.ok()) return tracked.error();
   return TrackedDrive{std::move(*tracked), mounting};
@@ -156,16 +154,32 @@ std::optional<Eigen::Isometry3d> SensorAt(const TrackedDrive& drive, TimeNs t) {
   return std::nullopt;
 }
 
-// The tracker's model points of the first revolutions in the frame of the sensor at the
-// drive's first revolution.
-maps::range3d::RangeFrame Reconstruction(const TrackedDrive& drive, const CalibrateOptions& options) {
-  const Eigen::Isometry3f first_T_world = drive.Sensor(0).inverse().cast<float>();
-  const auto& offsets = drive.result.model_offsets;
-  const std::size_t revolutions = static_cast<std::size_t>(std::max(options.reconstruction_revolutions, 1));
-  const std::size_t end = offsets.size() > revolutions ? offsets[revolutions] : drive.result.model_points.size();
+// The drive's first revolutions, ground and all (the tracker cuts the ground it would
+// otherwise register, and the ground holds the pair's height, roll and pitch), deskewed with
+// the estimated mounting and placed at their tracked poses in the frame of the sensor at the
+// first revolution.
+Result<maps::range3d::RangeFrame> Reconstruction(const CalibrateOptions& options, const CalibrationDrive& drive, const TrackedDrive& tracked) {
+  DeskewedDriveOptions walk;
+  walk.capture = drive.capture;
+  walk.can_log = drive.can_log;
+  walk.dbc = drive.dbc;
+  walk.odometry_config = options.odometry_config;
+  walk.vehicle_T_sensor = tracked.vehicle_T_sensor;
+  walk.stream = options.tracking.stream;
+  walk.max_revolutions = std::max(options.reconstruction_revolutions, 1);
+  const Eigen::Isometry3d first_T_world = tracked.Sensor(0).inverse();
+  const auto& trajectory = tracked.result.trajectory;
   hal::cloud::PointCloud cloud;
-  cloud.points.reserve(end);
-  for (std::size_t i = 0; i < end; ++i) cloud.points.push_back(first_T_world * drive.result.model_points[i]);
+  std::size_t next = 0;  // both walk the capture in time order
+  auto walked = WalkDeskewedDrive(walk, [&](const DeskewedRevolution& revolution) {
+    while (next < trajectory.size() && trajectory[next].time_ns < revolution.stamp) ++next;
+    if (next >= trajectory.size() || trajectory[next].time_ns != revolution.stamp) return;
+    const Eigen::Isometry3f first_T_sensor = (first_T_world * tracked.Sensor(next)).cast<float>();
+    for (std::size_t i = 0; i < revolution.cloud.points.size(); i += static_cast<std::size_t>(std::max(options.reconstruction_stride, 1))) {
+      cloud.points.push_back(first_T_sensor * revolution.cloud.points[i]);
+    }
+  });
+  if (!walked.ok()) return walked.error();
   maps::range3d::RangeFrameOptions frames;
   frames.unorganized_statistics.radius_m = options.reconstruction_radius_m;
   return maps::range3d::FrameFromCloud(cloud, maps::range3d::SensorModel::kUnorganized, frames);
@@ -173,6 +187,8 @@ maps::range3d::RangeFrame Reconstruction(const TrackedDrive& drive, const Calibr
 
 Result<SensorPairCalibration> CalibratePair(const CalibrateOptions& options, const TrackedDrive& first, const TrackedDrive& second,
                                             const Eigen::Isometry3d& mounting1, const Eigen::Isometry3d& mounting2) {
+  const CalibrationDrive& drive1 = options.drives[0];
+  const CalibrationDrive& drive2 = options.drives[1];
   const Clock::time_point start = Clock::now();
   // The first sensor at the second drive's first revolution, from its own first one.
   const auto bridge_world = SensorAt(first, second.result.trajectory.front().time_ns);
@@ -181,20 +197,32 @@ Result<SensorPairCalibration> CalibratePair(const CalibrateOptions& options, con
     return MakeError("calibrate: the second drive's first revolution is outside the first drive's time: not one drive");
   }
   const Eigen::Isometry3d bridge = together ? Eigen::Isometry3d::Identity() : first.Sensor(0).inverse() * *bridge_world;
-  const maps::range3d::RangeFrame target = Reconstruction(first, options);
-  const maps::range3d::RangeFrame source = Reconstruction(second, options);
+  auto target_frame = Reconstruction(options, drive1, first);
+  if (!target_frame.ok()) return target_frame.error();
+  auto source_frame = Reconstruction(options, drive2, second);
+  if (!source_frame.ok()) return source_frame.error();
+  const maps::range3d::RangeFrame& target = *target_frame;
+  const maps::range3d::RangeFrame& source = *source_frame;
   SensorPairCalibration pair;
   pair.from_hand_eye = mounting1.inverse() * mounting2;
   pair.points1 = target.cloud.size();
   pair.points2 = source.cloud.size();
-  const registration::FrameRegistration r = registration::RegisterFrames(
-      target, source, bridge * pair.from_hand_eye, options.tracking.method, options.tracking.nicp, registration::CorrespondenceMode::kKdTree);
+  // Coarse, then fine: the guess can be as far off as the mountings' guesses where the drive
+  // did not constrain them (0.2 m and 5 deg: 1.7 m at 20 m), beyond NICP's 0.5 m gate.
+  registration::NicpOptions coarse = options.tracking.nicp;
+  coarse.max_distance_m = 2.0F;
+  coarse.min_normal_dot = 0.95F;
+  const registration::FrameRegistration first_pass = registration::RegisterFrames(
+      target, source, bridge * pair.from_hand_eye, options.tracking.method, coarse, registration::CorrespondenceMode::kKdTree);
+  const Eigen::Isometry3d guess = first_pass.result.ok() ? first_pass.result.target_T_source : bridge * pair.from_hand_eye;
+  const registration::FrameRegistration r = registration::RegisterFrames(target, source, guess, options.tracking.method,
+                                                                         options.tracking.nicp, registration::CorrespondenceMode::kKdTree);
   if (!r.result.ok()) {
     return MakeError(std::string("calibrate: the reconstructions did not register (") + registration::FailureName(r.result.failure) + ")");
   }
   pair.sensor1_T_sensor2 = bridge.inverse() * r.result.target_T_source;
   pair.inliers = r.result.inliers;
-  pair.iterations = r.result.iterations;
+  pair.iterations = first_pass.result.iterations + r.result.iterations;
   pair.chi2 = r.result.chi2;
   pair.seconds = SecondsSince(start);
   return pair;

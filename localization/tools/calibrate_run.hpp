@@ -16,11 +16,12 @@
 // estimate: passes = 2 by default. On planar drives the height is unobservable and keeps
 // the guess (said in the result).
 //
-// Sensor to sensor: each drive's reconstruction (the tracker's model points of its first
-// revolutions, in the frame of its sensor at its first revolution) registered to the first drive's by NICP in
-// KD-tree mode, from the two hand-eye mountings' guess. The drives are one drive recorded
-// by two sensors: their first revolutions start together (else drive 1's tracked motion
-// bridges the time between them), with the vehicle where it was for both.
+// Sensor to sensor: each drive's reconstruction (its first revolutions, ground included,
+// deskewed and placed at their tracked poses in the frame of its sensor at its first
+// revolution) registered to the first drive's by NICP in KD-tree mode, coarse (2 m gate)
+// then fine, from the two mountings' guess. The drives are one drive recorded by two
+// sensors: their first revolutions start together (else drive 1's tracked motion bridges
+// the time between them), with the vehicle where it was for both.
 #pragma once
 
 #include <filesystem>
@@ -57,10 +58,9 @@ struct CalibrateOptions {
   int ground_every = 10;  // revolutions
   // The reconstructions registered for the sensor pair: each drive's first revolutions
   // (every reconstruction_stride-th point), before the tracker's drift tilts them apart
-  // (over the whole 50 s ramps drive the two VLP-16 reconstructions disagreed by 1 deg in
-  // roll and pitch), and their unorganized statistics radius, wide enough to span the
-  // rings (VLP-16, 30 revolutions: 0.3 m left the pair 8 cm and 0.25 deg off, 0.5 m 1 cm
-  // and 0.14 deg, 0.8 m 1.3 cm and 0.08 deg at twice the time).
+  // (the tracker's model over the whole 50 s ramps drive left the two VLP-16
+  // reconstructions 1 deg apart in roll and pitch), and their unorganized statistics
+  // radius, wide enough to span the rings (0.3 m left the pair 8 cm and 0.25 deg off).
   int reconstruction_revolutions = 30;
   int reconstruction_stride = 2;
   float reconstruction_radius_m = 0.5F;

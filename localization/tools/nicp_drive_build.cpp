@@ -180,7 +180,6 @@ class RevolutionTracker {
 
   void AddToModel(const maps::range3d::SurfelCloud& cloud) {
     const Eigen::Isometry3f pose = world_T_sensor_.cast<float>();
-    result_.model_offsets.push_back(result_.model_points.size());
     for (std::size_t i = 0; i < cloud.size(); i += static_cast<std::size_t>(options_.model_stride)) {
       if (!cloud.has_normal(i)) continue;
       result_.model_points.push_back(pose * cloud.points[i]);

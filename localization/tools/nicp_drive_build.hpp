@@ -92,7 +92,6 @@ struct NicpDriveResult {
   // (empty without a CAN log).
   std::vector<hal::trajectory::StampedPose> odometry;
   std::vector<Eigen::Vector3f> model_points, model_normals;
-  std::vector<std::size_t> model_offsets;  // where each kept revolution's model points start
   std::optional<maps::ClassGrid> mosaic;  // none when not asked for or nothing was gridded
   std::string sensor;                     // the range frames' model ("hdl32e", ...)
   int frames = 0;                         // revolutions tracked

@@ -107,6 +107,25 @@ TEST(HandEye, StraightDriveConstrainsOnlyTheDirectionOfTravel) {
   EXPECT_EQ(result->vehicle_T_sensor.translation(), kGuess.translation());
 }
 
+TEST(HandEye, NearlyStraightDriveHoldsTheLeverArm) {
+  // A straight drive whose heading wanders by hundredths of a degree (a gyro's noise): the
+  // lever arm gets a little information, far too little to trust, and stays at the guess.
+  auto vehicle = VehiclePath(false, false);
+  std::mt19937 random(9);
+  std::normal_distribution<double> wander(0.0, 0.03);
+  for (Eigen::Isometry3d& pose : vehicle) pose = pose * Pose(0.0, 0.0, 0.0, 0.0, 0.0, wander(random));
+  auto result = SolveHandEye(MotionPairs(SensorTrack(vehicle, 6), vehicle), kGuess);
+  ASSERT_TRUE(result.ok()) << result.error().message;
+  EXPECT_FALSE(result->observable[0]);
+  EXPECT_FALSE(result->observable[1]);
+  EXPECT_EQ(result->vehicle_T_sensor.translation(), kGuess.translation());
+  EXPECT_TRUE(result->observable[4]);
+  EXPECT_TRUE(result->observable[5]);
+  // The direction of travel in the sensor frame is what it does know.
+  const Eigen::Vector3d travel = result->vehicle_T_sensor.rotation().transpose() * Eigen::Vector3d::UnitX();
+  EXPECT_LT(std::acos(std::min(1.0, travel.dot(kTruth.rotation().transpose() * Eigen::Vector3d::UnitX()))), 0.05 * kDeg);
+}
+
 TEST(HandEye, WrongSensorMotionsAreDownWeighted) {
   const auto vehicle = VehiclePath(true, false);
   auto pairs = MotionPairs(SensorTrack(vehicle, 4), vehicle);
