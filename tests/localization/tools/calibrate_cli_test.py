@@ -61,8 +61,9 @@ class Calibrate(unittest.TestCase):
                                     capture_output=True, text=True, timeout=900)
             assert result.returncode == 0, result.stderr
             cls.drives[name] = out
+        passes = ["--passes", "1", "--reconstruction-revolutions", "10"] if QUICK else []
         cls.result = run("calibrate", cls.drives["a"], cls.drives["b"], "--initial", csv(GUESS["a"]),
-                         "--initial2", csv(GUESS["b"]), "--json")
+                         "--initial2", csv(GUESS["b"]), *passes, "--json")
 
     def sensors(self):
         self.assertEqual(self.result.returncode, 0, self.result.stderr)
