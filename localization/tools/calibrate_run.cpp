@@ -180,6 +180,13 @@ Result<maps::range3d::RangeFrame> Reconstruction(const CalibrateOptions& options
     }
   });
   if (!walked.ok()) return walked.error();
+  const std::size_t max_points = static_cast<std::size_t>(std::max(options.reconstruction_max_points, 1));
+  if (cloud.points.size() > max_points) {
+    const std::size_t keep_every = (cloud.points.size() + max_points - 1) / max_points;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < cloud.points.size(); i += keep_every) cloud.points[kept++] = cloud.points[i];
+    cloud.points.resize(kept);
+  }
   maps::range3d::RangeFrameOptions frames;
   frames.unorganized_statistics.radius_m = options.reconstruction_radius_m;
   return maps::range3d::FrameFromCloud(cloud, maps::range3d::SensorModel::kUnorganized, frames);
