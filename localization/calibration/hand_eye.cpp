@@ -192,7 +192,14 @@ Result<HandEyeResult> Solve(std::span<const MotionPair> pairs, const Eigen::Isom
   }
   ScaledInformation information = Decompose(n.h, options);
   for (const Kernel kernel : {Kernel::kHuber, Kernel::kInliersOnly}) {
-    if (kernel == Kernel::kInliersOnly) used = Inliers(pairs, PoseOf(theta), options);
+    if (kernel == Kernel::kInliersOnly) {
+      used = Inliers(pairs, PoseOf(theta), options);
+      const auto agreeing = std::count(used.begin(), used.end(), true);
+      if (agreeing < options.min_pairs) {
+        return MakeError("hand-eye calibration: only " + std::to_string(agreeing) + " of " + std::to_string(pairs.size()) +
+                         " sensor motions agree with the odometry's through any mounting near the guess (did the tracking fail?)");
+      }
+    }
     n = Linearize(pairs, used, theta, options, kernel);
     information = Decompose(n.h, options);
     for (int i = 0; i < options.max_iterations; ++i) {

@@ -154,6 +154,12 @@ TEST(HandEye, BadInputIsAnError) {
   auto nan = SolveHandEye(pairs, kGuess);
   ASSERT_FALSE(nan.ok());
   EXPECT_NE(nan.error().message.find("pair 7"), std::string::npos);
+  // A tracker that lost its way: the sensor's motions have nothing to do with the vehicle's.
+  auto lost = MotionPairs(SensorTrack(vehicle, 5), vehicle);
+  for (std::size_t i = 0; i < lost.size(); ++i) lost[i].sensor_motion = Pose(0.5 * std::sin(i * 0.7), 0.3, 0.0, 0.0, 0.0, 20.0 * std::cos(i * 1.3));
+  auto disagree = SolveHandEye(lost, kGuess);
+  ASSERT_FALSE(disagree.ok());
+  EXPECT_NE(disagree.error().message.find("did the tracking fail"), std::string::npos);
   std::vector<MotionPair> standing(50);
   auto still = SolveHandEye(standing, kGuess);
   ASSERT_FALSE(still.ok());
