@@ -39,6 +39,8 @@ flat2d-sim --out writes them) or a capture file with --can and --dbc.
   --no-ground           all six components by motion (Eq. 6.3 alone); by default roll,
                         pitch and height come from the ground plane under the sensor
                         (flat ground), x, y and yaw from motion
+  --tracking T          model (default) or keyframe, as build --mode nicp (the merged
+                        model loses its way on the VLP-32C ramps drive; keyframes do not)
   --pair-distance M --pair-angle RAD
                         a motion pair spans M metres or RAD radians of the vehicle's
                         motion (default 1, 0.1)
@@ -111,6 +113,11 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--pair-angle") a.options.pair_angle_rad = number();
     else if (arg == "--max-frames") a.options.tracking.max_revolutions = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 2, 1 << 30));
     else if (arg == "--no-ground") a.options.use_ground = false;
+    else if (arg == "--tracking") {
+      const std::string_view tracking = value();
+      if (tracking != "model" && tracking != "keyframe") Fail(1, "calibrate: --tracking is model or keyframe");
+      a.options.tracking.frame_to_model = tracking == "model";
+    }
     else if (arg == "--reconstruction-revolutions") a.options.reconstruction_revolutions = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1 << 20));
     else if (arg == "--reconstruction-radius") a.options.reconstruction_radius_m = static_cast<float>(number());
     else if (arg == "--json") a.json = true;
