@@ -254,6 +254,18 @@ Result<HandEyeResult> SolveHandEye(std::span<const MotionPair> pairs, const Eige
   }
 }
 
+double OdometryDistanceScale(std::span<const MotionPair> pairs, double max_angle_rad) {
+  std::vector<double> ratios;
+  for (const MotionPair& pair : pairs) {
+    const double distance = pair.vehicle_motion.translation().norm();
+    if (distance <= 0.0 || Eigen::AngleAxisd(pair.vehicle_motion.rotation()).angle() >= max_angle_rad) continue;
+    ratios.push_back(pair.sensor_motion.translation().norm() / distance);
+  }
+  if (ratios.empty()) return 1.0;
+  std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2), ratios.end());
+  return ratios[ratios.size() / 2];
+}
+
 std::vector<MotionPair> MotionPairs(std::span<const Eigen::Isometry3d> world_T_sensor,
                                     std::span<const Eigen::Isometry3d> odometry_T_vehicle, double min_distance_m,
                                     double min_angle_rad) {

@@ -39,6 +39,10 @@ flat2d-sim --out writes them) or a capture file with --can and --dbc.
   --no-ground           all six components by motion (Eq. 6.3 alone); by default roll,
                         pitch and height come from the ground plane under the sensor
                         (flat ground), x, y and yaw from motion
+  --no-odometry-scale   take the odometry's distances as they are; by default they are
+                        scaled to the tracked ones first (the median over straight
+                        intervals), as a wheel scale error of s passes for a lateral lever
+                        arm of s times the turn radius
   --tracking T          model (default) or keyframe, as build --mode nicp (the merged
                         model loses its way on the VLP-32C ramps drive; keyframes do not)
   --pair-distance M --pair-angle RAD
@@ -55,6 +59,7 @@ flat2d-sim --out writes them) or a capture file with --can and --dbc.
                         seconds, initial, vehicle_T_sensor, observable, sigma,
                         source (motion, ground or guess per component), ground
                         (roll_deg, pitch_deg, height_m, revolutions, tried),
+                        odometry_scale,
                         rms_translation_m, rms_rotation_deg) and, with DRIVE2,
                         sensor_pairs (sensor1_T_sensor2, from_hand_eye, inliers,
                         iterations, chi2, points1, points2, seconds). A pose is
@@ -113,6 +118,7 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--pair-angle") a.options.pair_angle_rad = number();
     else if (arg == "--max-frames") a.options.tracking.max_revolutions = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 2, 1 << 30));
     else if (arg == "--no-ground") a.options.use_ground = false;
+    else if (arg == "--no-odometry-scale") a.options.scale_odometry = false;
     else if (arg == "--tracking") {
       const std::string_view tracking = value();
       if (tracking != "model" && tracking != "keyframe") Fail(1, "calibrate: --tracking is model or keyframe");
@@ -221,11 +227,12 @@ void PrintJson(const Args& a, const CalibrateResult& r) {
     const calibration::HandEyeResult& h = s.hand_eye;
     std::printf("%s{\"drive\": \"%s\", \"sensor\": \"%s\", \"frames\": %d, \"failures\": %d, \"pairs\": %d, \"inliers\": %d, "
                 "\"iterations\": %d, \"seconds\": %.2f, \"initial\": %s, \"vehicle_T_sensor\": %s, \"observable\": %s, "
-                "\"sigma\": %s, \"source\": %s, \"ground\": %s, \"rms_translation_m\": %.4f, \"rms_rotation_deg\": %.4f}",
+                "\"sigma\": %s, \"source\": %s, \"ground\": %s, \"odometry_scale\": %.5f, \"rms_translation_m\": %.4f, "
+                "\"rms_rotation_deg\": %.4f}",
                 d ? ", " : "", a.drives[d].path.c_str(), s.sensor.c_str(), s.frames, s.failures, h.pairs, h.inliers, h.iterations,
                 s.seconds, PoseJson(a.options.drives[d].initial_vehicle_T_sensor).c_str(), PoseJson(h.vehicle_T_sensor).c_str(),
                 ComponentsJson(s, "observable").c_str(), ComponentsJson(s, "sigma").c_str(), ComponentsJson(s, "source").c_str(),
-                GroundJson(s.ground).c_str(), h.rms_translation_m, h.rms_rotation_deg);
+                GroundJson(s.ground).c_str(), s.odometry_scale, h.rms_translation_m, h.rms_rotation_deg);
   }
   std::printf("]");
   if (r.pair) {

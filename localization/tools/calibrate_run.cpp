@@ -124,6 +124,10 @@ Result<SensorCalibration> CalibrateSensor(const CalibrateOptions& options, const
     if (!tracked.ok()) return tracked.error();
     auto pairs = MotionPairsOf(options, drive, *tracked);
     if (!pairs.ok()) return pairs.error();
+    if (options.scale_odometry) {
+      calibration.odometry_scale = calibration::OdometryDistanceScale(*pairs);
+      for (calibration::MotionPair& pair : *pairs) pair.vehicle_motion.translation() *= calibration.odometry_scale;
+    }
     auto solved = calibration::SolveHandEye(*pairs, mounting, hand_eye);
     if (!solved.ok()) return MakeError(drive.capture.string() + ": " + solved.error().message);
     calibration.hand_eye = *solved;

@@ -51,6 +51,9 @@ struct CalibrateOptions {
   double pair_distance_m = 1.0;          // each motion pair: this far ...
   double pair_angle_rad = 0.1;           // ... or this much turned
   int passes = 2;
+  // Scale the odometry's distances to the tracked ones before the solve (hand_eye.hpp,
+  // OdometryDistanceScale).
+  bool scale_odometry = true;
   // Roll, pitch and height from the ground plane, the hand-eye solve left with x, y and yaw
   // (false: all six by motion, Eq. 6.3 alone).
   bool use_ground = true;
@@ -80,6 +83,7 @@ struct SensorCalibration {
   calibration::HandEyeResult hand_eye;
   std::optional<GroundEstimate> ground;  // with use_ground
   std::string sensor;  // the capture's model ("vlp16", ...)
+  double odometry_scale = 1.0;  // tracked / odometry distance on straight intervals
   int frames = 0, failures = 0;
   double seconds = 0.0;  // every pass's tracking and solve
 };

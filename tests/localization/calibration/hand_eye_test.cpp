@@ -137,6 +137,32 @@ TEST(HandEye, WrongSensorMotionsAreDownWeighted) {
   EXPECT_LE(result->inliers, result->pairs - static_cast<int>(pairs.size() / 10));
 }
 
+TEST(HandEye, WheelScaleErrorIsNotALeverArm) {
+  // Wheels that measure 0.5 % long: taken as they are, the lever arm soaks the error up
+  // across the turns (0.5 % of the 10 m radius); scaled to the sensor's distances first, not.
+  // Left turns only, as round a block: 10 s straight, then 5 s at 0.3 rad/s (10 m radius).
+  std::vector<Eigen::Isometry3d> vehicle;
+  double x = 0.0, y = 0.0, heading = 0.0;
+  for (int i = 0; i < 600; ++i) {
+    heading += (i % 150 >= 100 ? 0.3 : 0.0) * 0.1;
+    x += 0.3 * std::cos(heading);
+    y += 0.3 * std::sin(heading);
+    vehicle.push_back(Pose(x, y, 0.0, 0.0, 0.0, heading / kDeg));
+  }
+  auto pairs = MotionPairs(SensorTrack(vehicle, 8), vehicle);
+  for (MotionPair& pair : pairs) pair.vehicle_motion.translation() *= 1.005;
+  auto raw = SolveHandEye(pairs, kGuess);
+  ASSERT_TRUE(raw.ok()) << raw.error().message;
+  EXPECT_GT((raw->vehicle_T_sensor.translation() - kTruth.translation()).head<2>().norm(), 0.03);
+  const double scale = OdometryDistanceScale(pairs);
+  EXPECT_NEAR(scale, 1.0 / 1.005, 2e-4);
+  for (MotionPair& pair : pairs) pair.vehicle_motion.translation() *= scale;
+  auto scaled = SolveHandEye(pairs, kGuess);
+  ASSERT_TRUE(scaled.ok()) << scaled.error().message;
+  ExpectNear(scaled->vehicle_T_sensor, kTruth, 0.01, 0.05, false);
+  EXPECT_EQ(OdometryDistanceScale({}), 1.0);
+}
+
 TEST(HandEye, MotionPairsSpanTheGivenDistance) {
   const auto vehicle = VehiclePath(false, false);  // 0.3 m per step
   const auto pairs = MotionPairs(vehicle, vehicle, 1.0, 0.1);
