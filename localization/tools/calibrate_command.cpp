@@ -87,14 +87,7 @@ struct Args {
 
 Eigen::Isometry3d ParseMounting(std::string_view flag, const char* text) {
   const std::vector<double> v = maps::cli::ParseNumberList(kTool, flag, text, 6);
-  maps::SensorMounting mounting;
-  mounting.set_x_m(v[0]);
-  mounting.set_y_m(v[1]);
-  mounting.set_z_m(v[2]);
-  mounting.set_roll_deg(v[3]);
-  mounting.set_pitch_deg(v[4]);
-  mounting.set_yaw_deg(v[5]);
-  return maps::VehicleFromSensor(mounting);
+  return maps::VehicleFromSensor(std::span<const double, 6>(v.data(), 6));
 }
 
 Args ParseArgs(int argc, char** argv) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numbers>
 
 #include "localization/registration/frame_registration.hpp"
 #include "localization/tools/deskewed_drive.hpp"
@@ -58,6 +59,20 @@ Result<std::vector<calibration::MotionPair>> MotionPairsOf(const CalibrateOption
   return calibration::MotionPairs(sensor, vehicle, options.pair_distance_m, options.pair_angle_rad);
 }
 
+// The drive's revolutions deskewed with `mounting` (0 revolutions: all).
+DeskewedDriveOptions WalkOf(const CalibrateOptions& options, const CalibrationDrive& drive, const Eigen::Isometry3d& mounting,
+                            int revolutions) {
+  DeskewedDriveOptions walk;
+  walk.capture = drive.capture;
+  walk.can_log = drive.can_log;
+  walk.dbc = drive.dbc;
+  walk.odometry_config = options.odometry_config;
+  walk.vehicle_T_sensor = mounting;
+  walk.stream = options.tracking.stream;
+  walk.max_revolutions = revolutions;
+  return walk;
+}
+
 double Median(std::vector<double> values) {
   std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
   return values[values.size() / 2];
@@ -65,14 +80,7 @@ double Median(std::vector<double> values) {
 
 // The ground plane in every ground_every-th revolution, deskewed with the guessed mounting.
 Result<GroundEstimate> EstimateGround(const CalibrateOptions& options, const CalibrationDrive& drive, const Eigen::Isometry3d& guess) {
-  DeskewedDriveOptions walk;
-  walk.capture = drive.capture;
-  walk.can_log = drive.can_log;
-  walk.dbc = drive.dbc;
-  walk.odometry_config = options.odometry_config;
-  walk.vehicle_T_sensor = guess;
-  walk.stream = options.tracking.stream;
-  walk.max_revolutions = options.tracking.max_revolutions;
+  const DeskewedDriveOptions walk = WalkOf(options, drive, guess, options.tracking.max_revolutions);
   const Eigen::Vector3d up = guess.linear().transpose() * Eigen::Vector3d::UnitZ();
   std::vector<double> roll, pitch, height;
   GroundEstimate ground;
@@ -89,7 +97,7 @@ Result<GroundEstimate> EstimateGround(const CalibrateOptions& options, const Cal
   });
   if (!walked.ok()) return walked.error();
   if (height.empty()) return MakeError(drive.capture.string() + ": no ground plane found under the sensor (is the mounting's guess upright?)");
-  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+  constexpr double kRadToDeg = 180.0 / std::numbers::pi;
   ground.roll_deg = Median(roll) * kRadToDeg;
   ground.pitch_deg = Median(pitch) * kRadToDeg;
   ground.height_m = Median(height);
@@ -163,14 +171,7 @@ std::optional<Eigen::Isometry3d> SensorAt(const TrackedDrive& drive, TimeNs t) {
 // the estimated mounting and placed at their tracked poses in the frame of the sensor at the
 // first revolution.
 Result<maps::range3d::RangeFrame> Reconstruction(const CalibrateOptions& options, const CalibrationDrive& drive, const TrackedDrive& tracked) {
-  DeskewedDriveOptions walk;
-  walk.capture = drive.capture;
-  walk.can_log = drive.can_log;
-  walk.dbc = drive.dbc;
-  walk.odometry_config = options.odometry_config;
-  walk.vehicle_T_sensor = tracked.vehicle_T_sensor;
-  walk.stream = options.tracking.stream;
-  walk.max_revolutions = std::max(options.reconstruction_revolutions, 1);
+  const DeskewedDriveOptions walk = WalkOf(options, drive, tracked.vehicle_T_sensor, std::max(options.reconstruction_revolutions, 1));
   const Eigen::Isometry3d first_T_world = tracked.Sensor(0).inverse();
   const auto& trajectory = tracked.result.trajectory;
   hal::cloud::PointCloud cloud;

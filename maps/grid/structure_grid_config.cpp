@@ -107,6 +107,17 @@ Eigen::Isometry3d VehicleFromSensor(const SensorMounting& mounting) {
   return vehicle_T_sensor;
 }
 
+Eigen::Isometry3d VehicleFromSensor(std::span<const double, 6> v) {
+  SensorMounting mounting;
+  mounting.set_x_m(v[0]);
+  mounting.set_y_m(v[1]);
+  mounting.set_z_m(v[2]);
+  mounting.set_roll_deg(v[3]);
+  mounting.set_pitch_deg(v[4]);
+  mounting.set_yaw_deg(v[5]);
+  return VehicleFromSensor(mounting);
+}
+
 SensorMounting MountingOf(const Eigen::Isometry3d& vehicle_T_sensor) {
   const Eigen::Matrix3d& r = vehicle_T_sensor.linear();
   SensorMounting mounting;

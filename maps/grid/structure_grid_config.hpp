@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 
 #include <Eigen/Geometry>
 
@@ -20,6 +21,8 @@ Result<StructureGridOptions> LoadStructureGridOptions(const std::filesystem::pat
 
 // vehicle_T_sensor from the mounting (Z-Y-X Euler angles).
 Eigen::Isometry3d VehicleFromSensor(const SensorMounting& mounting);
+// ... from its six numbers x, y, z (m), roll, pitch, yaw (deg), as the tools' X,Y,Z,ROLL,PITCH,YAW.
+Eigen::Isometry3d VehicleFromSensor(std::span<const double, 6> xyz_roll_pitch_yaw);
 // Its inverse: the mounting (Z-Y-X Euler angles, pitch within +-90 deg) of vehicle_T_sensor.
 SensorMounting MountingOf(const Eigen::Isometry3d& vehicle_T_sensor);
 

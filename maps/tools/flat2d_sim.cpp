@@ -124,14 +124,7 @@ Eigen::Isometry3d ParseMounting(const std::string& text) {
     begin = comma + 1;
   }
   if (values.size() != 6) Fail(kUsageError, "--mounting: expected X,Y,Z,ROLL,PITCH,YAW, got " + text);
-  flat2d::maps::SensorMounting mounting;
-  mounting.set_x_m(values[0]);
-  mounting.set_y_m(values[1]);
-  mounting.set_z_m(values[2]);
-  mounting.set_roll_deg(values[3]);
-  mounting.set_pitch_deg(values[4]);
-  mounting.set_yaw_deg(values[5]);
-  return flat2d::maps::VehicleFromSensor(mounting);
+  return flat2d::maps::VehicleFromSensor(std::span<const double, 6>(values.data(), 6));
 }
 
 // HOST[:PORT] with a dotted-quad host.
