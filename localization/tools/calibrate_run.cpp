@@ -44,11 +44,8 @@ Result<TrackedDrive> Track(const CalibrateOptions& options, const CalibrationDri
 
 // The sensor's and the vehicle's motions over the same intervals: the tracked revolutions
 // against the CAN odometry at their stamps (those outside its time left out).
-Result<std::vector<calibration::MotionPair>> MotionPairsOf(const CalibrateOptions& options, const CalibrationDrive& drive,
-                                                           const TrackedDrive& tracked) {
-  auto odometry = DeadReckonedPoses(drive.dbc, options.odometry_config, drive.can_log);
-  if (!odometry.ok()) return odometry.error();
-  const maps::InterpolatedPoses vehicle_poses(std::move(*odometry));
+std::vector<calibration::MotionPair> MotionPairsOf(const CalibrateOptions& options, const maps::InterpolatedPoses& vehicle_poses,
+                                                   const TrackedDrive& tracked) {
   std::vector<Eigen::Isometry3d> sensor, vehicle;
   for (std::size_t i = 0; i < tracked.result.trajectory.size(); ++i) {
     const auto pose = vehicle_poses.PoseAt(tracked.result.trajectory[i].time_ns);
@@ -127,16 +124,19 @@ Result<SensorCalibration> CalibrateSensor(const CalibrateOptions& options, const
     mounting = WithGround(mounting, *ground);
     hand_eye.fixed = {false, false, true, true, true, false};
   }
+  // Dead-reckoned once: only the tracking changes from pass to pass.
+  auto odometry = DeadReckonedPoses(drive.dbc, options.odometry_config, drive.can_log);
+  if (!odometry.ok()) return odometry.error();
+  const maps::InterpolatedPoses vehicle_poses(std::move(*odometry));
   for (int pass = 0; pass < std::max(options.passes, 1); ++pass) {
     auto tracked = Track(options, drive, mounting);
     if (!tracked.ok()) return tracked.error();
-    auto pairs = MotionPairsOf(options, drive, *tracked);
-    if (!pairs.ok()) return pairs.error();
+    std::vector<calibration::MotionPair> pairs = MotionPairsOf(options, vehicle_poses, *tracked);
     if (options.scale_odometry) {
-      calibration.odometry_scale = calibration::OdometryDistanceScale(*pairs);
-      for (calibration::MotionPair& pair : *pairs) pair.vehicle_motion.translation() *= calibration.odometry_scale;
+      calibration.odometry_scale = calibration::OdometryDistanceScale(pairs);
+      for (calibration::MotionPair& pair : pairs) pair.vehicle_motion.translation() *= calibration.odometry_scale;
     }
-    auto solved = calibration::SolveHandEye(*pairs, mounting, hand_eye);
+    auto solved = calibration::SolveHandEye(pairs, mounting, hand_eye);
     if (!solved.ok()) return MakeError(drive.capture.string() + ": " + solved.error().message);
     calibration.hand_eye = *solved;
     calibration.sensor = tracked->result.sensor;
@@ -202,13 +202,13 @@ Result<SensorPairCalibration> CalibratePair(const CalibrateOptions& options, con
   const CalibrationDrive& drive1 = options.drives[0];
   const CalibrationDrive& drive2 = options.drives[1];
   const Clock::time_point start = Clock::now();
-  // The first sensor at the second drive's first revolution, from its own first one.
+  // The first sensor at the second drive's first revolution, from its own first one
+  // (the identity when they start together).
   const auto bridge_world = SensorAt(first, second.result.trajectory.front().time_ns);
-  const bool together = second.result.trajectory.front().time_ns == first.result.trajectory.front().time_ns;
-  if (!together && !bridge_world) {
+  if (!bridge_world) {
     return MakeError("calibrate: the second drive's first revolution is outside the first drive's time: not one drive");
   }
-  const Eigen::Isometry3d bridge = together ? Eigen::Isometry3d::Identity() : first.Sensor(0).inverse() * *bridge_world;
+  const Eigen::Isometry3d bridge = first.Sensor(0).inverse() * *bridge_world;
   auto target_frame = Reconstruction(options, drive1, first);
   if (!target_frame.ok()) return target_frame.error();
   auto source_frame = Reconstruction(options, drive2, second);
