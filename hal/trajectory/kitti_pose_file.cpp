@@ -1,0 +1,46 @@
+#include "hal/trajectory/kitti_pose_file.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "hal/trajectory/transform_file.hpp"
+
+namespace flat2d::hal::trajectory {
+
+Result<std::vector<Eigen::Isometry3d>> ParseKittiPoses(std::string_view text, std::string_view source_name) {
+  std::vector<Eigen::Isometry3d> poses;
+  std::istringstream lines{std::string(text)};
+  std::string line;
+  for (int line_number = 1; std::getline(lines, line); ++line_number) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::string where = std::string(source_name) + ": line " + std::to_string(line_number);
+    auto pose = ParseTransform(line, where);
+    if (!pose.ok()) return pose.error();
+    poses.push_back(*pose);
+  }
+  if (poses.empty()) return MakeError(std::string(source_name) + ": no poses");
+  return poses;
+}
+
+Result<std::vector<Eigen::Isometry3d>> ReadKittiPoses(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  if (!file) return MakeError(path.string() + ": cannot open");
+  std::stringstream text;
+  text << file.rdbuf();
+  return ParseKittiPoses(text.str(), path.string());
+}
+
+Eigen::Isometry3d VehicleFromKittiCamera(const Eigen::Isometry3d& world_T_cam0) {
+  // cam0_T_vehicle: the vehicle's x (forward) is the camera's z, y (left) is -x, z (up) is -y.
+  Eigen::Matrix3d cam_R_vehicle;
+  cam_R_vehicle << 0, -1, 0,  //
+      0, 0, -1,               //
+      1, 0, 0;
+  Eigen::Isometry3d cam_T_vehicle = Eigen::Isometry3d::Identity();
+  cam_T_vehicle.linear() = cam_R_vehicle;
+  // The same change of axes on the world side keeps the world's first pose the identity.
+  return cam_T_vehicle.inverse() * world_T_cam0 * cam_T_vehicle;
+}
+
+}  // namespace flat2d::hal::trajectory
