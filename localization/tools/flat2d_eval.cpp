@@ -3,6 +3,7 @@
 //   relations  the relations metric of the 2D SLAM benchmarks (Kuemmerle et al. 2009)
 //   traj       absolute trajectory error after rigid alignment; with --3d the TUM RGB-D
 //              benchmark's ATE and RPE of full 3D poses
+//   loops      loop-closure candidates on a drifted truth trajectory (issue 12; loops_command.hpp)
 // Exit status: 0 ok, 1 usage or option error, 2 a file cannot be read or is invalid.
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include "localization/evaluation/trajectory_error.hpp"
 #include "localization/evaluation/trajectory_error_3d.hpp"
 #include "localization/evaluation/trajectory_file.hpp"
+#include "localization/tools/loops_command.hpp"
 #include "localization/tools/trajectory_plots.hpp"
 #include "maps/grid/class_grid_file.hpp"
 #include "maps/grid/structure_comparison.hpp"
@@ -389,9 +391,10 @@ int main(int argc, char** argv) {
   if (argc >= 2 && std::string_view(argv[1]) == "relations") return EvalRelations(argc - 2, argv + 2);
   if (argc >= 2 && std::string_view(argv[1]) == "traj") return EvalTraj(argc - 2, argv + 2);
   if (argc >= 2 && std::string_view(argv[1]) == "grid") return EvalGrid(argc - 2, argv + 2);
+  if (argc >= 2 && std::string_view(argv[1]) == "loops") return localization::tools::LoopsCommand(argc - 2, argv + 2);
   if (argc >= 2 && (std::string_view(argv[1]) == "--help" || std::string_view(argv[1]) == "-h")) {
-    std::cout << kUsage;
+    std::cout << kUsage << '\n' << localization::tools::kLoopsUsage;
     return 0;
   }
-  Fail(1, std::string("unknown or missing command\n") + kUsage);
+  Fail(1, std::string("unknown or missing command\n") + kUsage + "\n" + localization::tools::kLoopsUsage);
 }
