@@ -63,6 +63,10 @@ TEST(LoopCandidates, TheBlockCloses) {
   EXPECT_LT(Eigen::AngleAxisd(last.linear()).angle(), 0.5 / 15.0);
 }
 
+// Under the sanitizers, where the search runs some forty times slower, 1.3 laps: the
+// second lap's first 100 m revisit the first corner only.
+const double kLaps = testing::kSanitized ? 1.3 : 2.2;
+
 evaluation::LoopEvalOptions BlockOptions() {
   evaluation::LoopEvalOptions options;
   options.drift.yaw_bias_deg_per_m = 0.03;  // 10 deg over a lap: the distance search is blind by the second
@@ -72,15 +76,15 @@ evaluation::LoopEvalOptions BlockOptions() {
 }
 
 TEST(LoopCandidates, TrajectoryShapeFindsTheRevisitsThatDistanceMisses) {
-  const std::vector<Eigen::Isometry3d> truth = BlockDrive(2.2);
+  const std::vector<Eigen::Isometry3d> truth = BlockDrive(kLaps);
   const evaluation::LoopEvalReport report = evaluation::EvaluateLoopCandidates(truth, BlockOptions());
   std::printf("%d maps, %d informative; revisits %d (%d informative); final drift %.1f m\n", report.maps,
               report.informative_maps, report.revisits, report.informative_revisits, report.final_drift_m);
   std::printf("distance: %d candidates, %d correct, recall %.3f; shape: %d candidates, %d correct, recall %.3f\n",
               report.distance.candidates, report.distance.correct, report.recall(report.distance), report.shape.candidates,
               report.shape.correct, report.recall(report.shape));
-  ASSERT_GT(report.informative_revisits, 10);
-  EXPECT_GT(report.final_drift_m, 10.0);
+  ASSERT_GT(report.informative_revisits, testing::kSanitized ? 2 : 10);
+  EXPECT_GT(report.final_drift_m, testing::kSanitized ? 3.0 : 10.0);
   // Every corner revisited is found, its guess within 1 m and 5 deg, and nothing else is.
   EXPECT_GE(report.recall(report.shape), 0.9);
   EXPECT_GE(report.shape.precision(), 0.9);
@@ -88,9 +92,10 @@ TEST(LoopCandidates, TrajectoryShapeFindsTheRevisitsThatDistanceMisses) {
 }
 
 TEST(LoopCandidates, WithoutDriftTheDistanceSearchFindsThemToo) {
+  if (testing::kSanitized) GTEST_SKIP() << "the drifted case above runs the same code; the release build runs this";
   evaluation::LoopEvalOptions options = BlockOptions();
   options.drift = {0.0, 0.0, 0.0, 0.0, 0.0, 1};
-  const evaluation::LoopEvalReport report = evaluation::EvaluateLoopCandidates(BlockDrive(2.2), options);
+  const evaluation::LoopEvalReport report = evaluation::EvaluateLoopCandidates(BlockDrive(kLaps), options);
   EXPECT_LT(report.final_drift_m, 1e-9);
   EXPECT_EQ(report.distance.all_revisits_found, report.revisits);
   EXPECT_GE(report.recall(report.shape), 0.9);
