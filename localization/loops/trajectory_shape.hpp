@@ -14,7 +14,7 @@
 //     pairs would otherwise pull the fit (our addition; Omega stays I).
 //  4. Growth: the correspondences extended outward from n0 along the whole current path
 //     until a pair's position error exceeds max_pair_distance_m (where the passes part);
-//     step 3 again, until no more pairs join.
+//     step 3 again, until the number of pairs stops changing.
 //  5. The association is good to a pose spacing at best, and the error it leaves along
 //     the path is what Eq. 6.13 alone corrects worst (only the path's curvature holds it):
 //     steps 2-4 are repeated for path offsets within offset_search_m of the association's,
@@ -37,8 +37,8 @@ struct ShapeAlignmentOptions {
   double offset_search_m = 1.0; // step 5
   double search_limit_m = 1.0;
   double initial_span_m = 5.0;  // step 2: about a local map
-  // A current pose farther than this from the reference path, after alignment, has no
-  // partner: the two passes part there.
+  // Step 4 stops growing at the first current pose farther than this from its partner
+  // after alignment: the two passes part there.
   double max_pair_distance_m = 1.0;
 };
 
