@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "hal/trajectory/pose_interpolation.hpp"
 #include "localization/evaluation/trajectory_error.hpp"
 
 namespace flat2d::localization::evaluation {
@@ -17,15 +18,6 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 constexpr TimeNs kSameTimeNs = 2 * kNsPerUs;
 
 TimeNs SecondsToNs(double seconds) { return static_cast<TimeNs>(std::llround(seconds * 1e9)); }
-
-Eigen::Isometry3d Interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double fraction) {
-  // Eigen's slerp takes the shorter arc, so q and -q interpolate alike.
-  const Eigen::Quaterniond qa(a.linear()), qb(b.linear());
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  out.linear() = qa.slerp(fraction, qb).normalized().toRotationMatrix();
-  out.translation() = (1.0 - fraction) * a.translation() + fraction * b.translation();
-  return out;
-}
 
 // The truth at each estimate pose, nullopt where it has none (step 1).
 std::vector<std::optional<Eigen::Isometry3d>> TruthAtEstimate(const std::vector<StampedPose>& estimate,
@@ -114,7 +106,7 @@ std::optional<Eigen::Isometry3d> InterpolatedPose(const std::vector<StampedPose>
   const TimeNs gap = after->time_ns - before.time_ns;
   if (gap > max_gap_ns) return std::nullopt;
   const double fraction = static_cast<double>(time_ns - before.time_ns) / static_cast<double>(gap);
-  return Interpolate(before.world_T_body, after->world_T_body, fraction);
+  return hal::trajectory::InterpolatePose(before.world_T_body, after->world_T_body, fraction);
 }
 
 Result<TrajectoryError3d> EvaluateTrajectory3d(const std::vector<StampedPose>& estimate,

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "hal/trajectory/pose_interpolation.hpp"
 #include "localization/graph/se3_factors.hpp"
 
 namespace flat2d::localization::loops {
@@ -17,9 +18,6 @@ using graph::Vector6d;
 struct Pair {
   Eigen::Isometry3d reference;  // map_T_pose of the reference, interpolated
   int current = 0;              // index into the current path
-  bool operator==(const Pair& other) const {
-    return current == other.current && reference.isApprox(other.reference, 1e-9);
-  }
 };
 
 // Eq. 6.13's term: toVector(T_m^r^-1 T T_n^c), the G2 error of a pose T T_n^c measured as T_m^r.
@@ -172,11 +170,7 @@ Eigen::Isometry3d PoseAlongPath(std::span<const Eigen::Isometry3d> path, std::sp
   const auto upper = std::upper_bound(arc_lengths.begin(), arc_lengths.end(), arc_m);
   const std::size_t i = static_cast<std::size_t>(upper - arc_lengths.begin()) - 1;
   const double span = arc_lengths[i + 1] - arc_lengths[i];
-  const double u = span > 0.0 ? (arc_m - arc_lengths[i]) / span : 0.0;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = (1.0 - u) * path[i].translation() + u * path[i + 1].translation();
-  pose.linear() = Eigen::Quaterniond(path[i].linear()).slerp(u, Eigen::Quaterniond(path[i + 1].linear())).toRotationMatrix();
-  return pose;
+  return hal::trajectory::InterpolatePose(path[i], path[i + 1], span > 0.0 ? (arc_m - arc_lengths[i]) / span : 0.0);
 }
 
 ShapeAlignment AlignTrajectories(std::span<const Eigen::Isometry3d> reference, std::span<const Eigen::Isometry3d> current,

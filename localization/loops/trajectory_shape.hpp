@@ -66,7 +66,7 @@ Eigen::Isometry3d PoseAlongPath(std::span<const Eigen::Isometry3d> path, std::sp
 // Cumulative path length at each pose (the first 0).
 std::vector<double> ArcLengths(std::span<const Eigen::Isometry3d> path);
 
-// Steps 1-4. Poses are map_T_pose in each map's own frame. Empty paths or seeds out of
+// Steps 1-5. Poses are map_T_pose in each map's own frame. Empty paths or seeds out of
 // range give an alignment with no pairs.
 ShapeAlignment AlignTrajectories(std::span<const Eigen::Isometry3d> reference, std::span<const Eigen::Isometry3d> current,
                                  int reference_seed, int current_seed, const ShapeAlignmentOptions& options = {});

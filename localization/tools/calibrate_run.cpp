@@ -4,6 +4,7 @@
 #include <chrono>
 #include <numbers>
 
+#include "hal/trajectory/pose_interpolation.hpp"
 #include "localization/registration/frame_registration.hpp"
 #include "localization/tools/deskewed_drive.hpp"
 #include "localization/tools/odometry_poses.hpp"
@@ -157,11 +158,7 @@ std::optional<Eigen::Isometry3d> SensorAt(const TrackedDrive& drive, TimeNs t) {
     const TimeNs t0 = trajectory[i - 1].time_ns, t1 = trajectory[i].time_ns;
     if (t < t0) return std::nullopt;
     const double s = t1 > t0 ? static_cast<double>(t - t0) / static_cast<double>(t1 - t0) : 0.0;
-    const Eigen::Isometry3d a = drive.Sensor(i - 1), b = drive.Sensor(i);
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = Eigen::Quaterniond(a.linear()).slerp(s, Eigen::Quaterniond(b.linear())).toRotationMatrix();
-    pose.translation() = (1.0 - s) * a.translation() + s * b.translation();
-    return pose;
+    return hal::trajectory::InterpolatePose(drive.Sensor(i - 1), drive.Sensor(i), s);
   }
   return std::nullopt;
 }
