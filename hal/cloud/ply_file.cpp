@@ -35,7 +35,7 @@ class ElementReader {
 
  private:
   // What a vertex property goes into; kSkip for those the cloud does not keep.
-  enum Slot { kX, kY, kZ, kIntensity, kSkip };
+  enum Slot { kX, kY, kZ, kIntensity, kNx, kNy, kNz, kSkip };
 
   Error Fail(const PlyElement& element, std::uint64_t index, const PlyProperty& property,
              const std::string& problem) const {
@@ -64,11 +64,11 @@ class ElementReader {
   }
 
   Result<std::vector<Slot>> VertexSlots(const PlyElement& element) const {
-    static constexpr std::string_view kNames[] = {"x", "y", "z", "intensity"};
+    static constexpr std::string_view kNames[] = {"x", "y", "z", "intensity", "nx", "ny", "nz"};
     std::vector<Slot> slots(element.properties.size(), kSkip);
-    bool found[4] = {false, false, false, false};
+    bool found[kSkip] = {};
     for (std::size_t p = 0; p < slots.size(); ++p) {
-      for (int s = kX; s <= kIntensity; ++s) {
+      for (int s = kX; s < kSkip; ++s) {
         if (element.properties[p].name != kNames[s]) continue;
         if (element.properties[p].list) {
           return FailHeader(element, "property " + std::string(kNames[s]) + " is a list");
@@ -79,6 +79,9 @@ class ElementReader {
     }
     for (int s = kX; s <= kZ; ++s) {
       if (!found[s]) return FailHeader(element, "no property " + std::string(kNames[s]));
+    }
+    if ((found[kNx] || found[kNy] || found[kNz]) && !(found[kNx] && found[kNy] && found[kNz])) {
+      return FailHeader(element, "normals need all of nx, ny and nz");
     }
     return slots;
   }
@@ -94,9 +97,11 @@ class ElementReader {
     const bool has_intensity = std::find(slots->begin(), slots->end(), kIntensity) != slots->end();
     cloud.points.reserve(element.count);
     if (has_intensity) cloud.intensity.reserve(element.count);
+    const bool has_normals = std::find(slots->begin(), slots->end(), kNx) != slots->end();
+    if (has_normals) cloud.normals.reserve(element.count);
     std::string problem;
     for (std::uint64_t i = 0; i < element.count; ++i) {
-      double values[5] = {0.0, 0.0, 0.0, 0.0, 0.0};  // by Slot
+      double values[kSkip + 1] = {};  // by Slot
       for (std::size_t p = 0; p < slots->size(); ++p) {
         double value = 0.0;
         const PlyProperty& property = element.properties[p];
@@ -106,6 +111,10 @@ class ElementReader {
       cloud.points.emplace_back(static_cast<float>(values[kX]), static_cast<float>(values[kY]),
                                 static_cast<float>(values[kZ]));
       if (has_intensity) cloud.intensity.push_back(static_cast<float>(values[kIntensity]));
+      if (has_normals) {
+        cloud.normals.emplace_back(static_cast<float>(values[kNx]), static_cast<float>(values[kNy]),
+                                   static_cast<float>(values[kNz]));
+      }
     }
     return Status::Ok();
   }

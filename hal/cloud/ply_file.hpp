@@ -2,9 +2,9 @@
 //
 // Steps: parse the header (ply_header.hpp); then read the elements in file order, from
 // ASCII text (whitespace-separated values) or binary of either byte order. Of element
-// vertex the cloud keeps x, y, z (required, any scalar type, to float) and intensity
-// (optional); other properties, faces and other elements are read past, list properties
-// by their counts. Element range_grid (the Stanford 3D Scanning Repository's scans: obj_info
+// vertex the cloud keeps x, y, z (required, any scalar type, to float), intensity
+// (optional) and nx, ny, nz (optional, all three or none); other properties, faces and
+// other elements are read past, list properties by their counts. Element range_grid (the Stanford 3D Scanning Repository's scans: obj_info
 // num_cols 512 / num_rows 400, "property list uchar int vertex_indices") fills the grid:
 // one cell per list, row-major in file order (in the Stanford scans row 0 is the scan's
 // lowest y), holding its vertex or -1 for an empty list.

@@ -19,6 +19,7 @@ struct PointCloud {
   std::vector<Eigen::Vector3f> points;  // sensor frame, metres; NaN where the file has none
   std::vector<float> intensity;         // empty, or one per point
   std::vector<std::uint16_t> ring;      // empty, or one per point: laser index (PCD "ring")
+  std::vector<Eigen::Vector3f> normals;  // empty, or one per point: PLY nx, ny, nz as stored
 
   // The measurement grid, when the file has one: grid_width x grid_height cells, row-major,
   // each the index of its point in `points` or -1 (no return). PCD organized clouds

@@ -90,6 +90,24 @@ TEST(PlyFile, BinaryOfBothByteOrders) {
   }
 }
 
+// Normals as MeshLab, CloudCompare and flat2d's own writer store them: nx ny nz after x y z.
+TEST(PlyFile, NormalsAreKeptWhenAllThreeArePresent) {
+  const Result<PointCloud> cloud = ParsePly(
+      "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\nend_header\n1 2 3 0 0 1\n4 5 6 0.6 -0.8 0\n",
+      "n.ply");
+  ASSERT_TRUE(cloud.ok()) << cloud.error().message;
+  ASSERT_EQ(cloud->normals.size(), 2U);
+  EXPECT_EQ(cloud->normals[0], Eigen::Vector3f(0.0F, 0.0F, 1.0F));
+  EXPECT_EQ(cloud->normals[1], Eigen::Vector3f(0.6F, -0.8F, 0.0F));
+  EXPECT_EQ(ErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property float nx\nproperty float ny\nend_header\n1 2 3 0 1\n"),
+            "x.ply: header line 3 (element vertex): normals need all of nx, ny and nz");
+  const Result<PointCloud> plain = ParsePly(kAsciiHeader + kAsciiVertices + kAsciiFace + "0\n1 0\n1 1\n1 2\n0\n0\n", "p.ply");
+  ASSERT_TRUE(plain.ok()) << plain.error().message;
+  EXPECT_TRUE(plain->normals.empty());
+}
+
 TEST(PlyFile, HeaderErrorsNameTheLineAndProperty) {
   EXPECT_EQ(ErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty flaot x\n"),
             "x.ply: header line 4 (property x): unknown type 'flaot'");
