@@ -38,7 +38,9 @@ class RevolutionTracker {
     const maps::range3d::RangeFrame& current = frame.levels.front();
     if (result_.frames == 0) {
       Start(stamp);
+      world_T_map_ = world_T_sensor_;
       if (options_.frame_to_model) SeedModel(frame);
+      StartLocalModel(current);
     } else {
       const Eigen::Isometry3d guess = Guess(stamp);
       const Registration r = options_.frame_to_model ? AgainstModel(frame, guess) : AgainstKeyframe(current, guess);
@@ -46,6 +48,8 @@ class RevolutionTracker {
       result_.registration_ms.push_back(r.ms);
       result_.load_ms.push_back(load_ms);
       MoveTo(stamp, r.ok ? r.world_T_sensor : world_T_sensor_ * guess, r.ok);
+      if (r.ok && local_model_) MergeIntoLocalModel(current);
+      if (CutsLocalMap(r.ok)) StartLocalMap(frame, r.ok);
     }
     Record(stamp, current);
     result_.sensor = std::string(maps::range3d::SensorModelName(current.sensor));
@@ -54,6 +58,13 @@ class RevolutionTracker {
       world_T_keyframe_ = world_T_sensor_;
     }
     previous_ns_ = stamp;
+  }
+
+  // Hands the last local map to the caller, if any is open.
+  void Finish() {
+    if (model_tracker_ && options_.local_map_distance_m > 0.0 && result_.frames > map_first_) {
+      CloseLocalMap(result_.frames - 1, false);
+    }
   }
 
  private:
@@ -87,6 +98,43 @@ class RevolutionTracker {
     motion_ = world_T_sensor_.inverse() * rigid;
     motion_ns_ = stamp - previous_ns_;
     world_T_sensor_ = options_.planar ? OnThePlane(rigid) : rigid;
+  }
+
+  // Whether the revolution just moved to (index result_.frames) ends the current local map.
+  bool CutsLocalMap(bool registered) {
+    if (!options_.frame_to_model || options_.local_map_distance_m <= 0.0) return false;
+    map_path_m_ += motion_.translation().norm();
+    return !registered || map_path_m_ >= options_.local_map_distance_m;
+  }
+
+  // Closes the current map (with the current revolution when it was merged into it) and
+  // starts a new one with the current revolution at its pose. The tracker starts afresh
+  // too, unless tracking is continuous and the revolution registered.
+  void StartLocalMap(const registration::SnicpFrame& frame, bool registered) {
+    const int current = result_.frames;
+    CloseLocalMap(registered ? current : current - 1, !registered);
+    if (!options_.continuous_tracking || !registered) SeedModel(frame);
+    StartLocalModel(frame.levels.front());
+    map_first_ = current;
+    map_path_m_ = 0.0;
+    world_T_map_ = world_T_sensor_;
+  }
+
+  void CloseLocalMap(int last_revolution, bool ends_in_failure) {
+    if (!options_.on_local_map) return;
+    const maps::range3d::SurfelCloud& points = local_model_ ? local_model_->cloud() : model_tracker_->model().cloud();
+    options_.on_local_map({points, world_T_map_, map_first_, last_revolution, ends_in_failure});
+  }
+
+  // With continuous tracking, the local map's own model, seeded with `first`.
+  void StartLocalModel(const maps::range3d::RangeFrame& first) {
+    if (!options_.continuous_tracking || options_.local_map_distance_m <= 0.0 || !options_.frame_to_model) return;
+    local_model_.emplace(options_.model);
+    MergeIntoLocalModel(first);
+  }
+
+  void MergeIntoLocalModel(const maps::range3d::RangeFrame& frame) {
+    (void)local_model_->Merge(frame.cloud, frame.image, frame.projection, world_T_sensor_.cast<float>());
   }
 
   void SeedModel(const registration::SnicpFrame& first) {
@@ -197,8 +245,13 @@ class RevolutionTracker {
   TimeNs motion_ns_ = 0;                                       // ... and the time it took
   maps::range3d::RangeFrame keyframe_;  // the revolution the next one registers to
   std::optional<registration::ModelTracker> model_tracker_;  // frame to model instead
+  std::optional<maps::range3d::SurfelModel> local_model_;    // continuous tracking's local map
   Eigen::Isometry3d world_T_keyframe_ = Eigen::Isometry3d::Identity();
   TimeNs previous_ns_ = 0;
+  // The open local map: its first revolution, frame and the path travelled in it.
+  int map_first_ = 0;
+  Eigen::Isometry3d world_T_map_ = Eigen::Isometry3d::Identity();
+  double map_path_m_ = 0.0;
 };
 
 Result<std::optional<maps::InterpolatedPoses>> OpenOdometry(const NicpDriveOptions& options) {
@@ -232,6 +285,7 @@ Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options) {
   stream = &velodyne;
   while (auto datagram = (*source)->Next()) velodyne.Push(*datagram);
   velodyne.Finish();
+  tracker.Finish();
   if (velodyne.model_error()) return MakeError(options.capture.string() + ": " + velodyne.model_error()->message);
   if (result.frames == 0) return MakeError(options.capture.string() + ": no complete Velodyne revolution");
   if (!options.build_map) return result;

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,16 @@
 #include "maps/range3d/surfel_model.hpp"
 
 namespace flat2d::localization::tools {
+
+// A local map as the tracker closes it (thesis 6.3, build --mode catacomb): the merged
+// model's points in the world frame of the tracking, and the revolutions it was built from.
+struct TrackedLocalMap {
+  const maps::range3d::SurfelCloud& points;    // world frame (the tracking's)
+  Eigen::Isometry3d world_T_sensor_at_start;   // the map's frame: its first revolution's sensor
+  int first_revolution = 0;                    // indices into NicpDriveResult::trajectory,
+  int last_revolution = 0;                     // both included
+  bool ends_in_failure = false;  // the next map starts at a revolution that failed to register
+};
 
 struct NicpDriveOptions {
   std::filesystem::path capture;
@@ -71,6 +82,16 @@ struct NicpDriveOptions {
   // 0.0095 % of the distance, keyframes 0.009 % and 0.067 % (docs/benchmarks.md).
   bool frame_to_model = true;
   maps::range3d::SurfelModelOptions model{0.05F, 0.01F, 0.5F, 50.0F, 1'000'000, 0.02F, 1e-3F};
+  // Local maps (frame_to_model only; thesis 6.3): above 0, once the sensor has travelled this
+  // far since the model began, or when a registration fails, the model goes to on_local_map
+  // and a new one starts from the current revolution. The last one goes at the drive's end.
+  double local_map_distance_m = 0.0;
+  std::function<void(const TrackedLocalMap&)> on_local_map;
+  // False (thesis 6.3): each local map is tracked against its own model, started afresh at
+  // the cut. True: tracking runs on against the one merged model across cuts and each
+  // local map merges its revolutions into a model of its own: the cut costs the tracking
+  // nothing (a fresh model holds one revolution), at a second merge per revolution.
+  bool continuous_tracking = false;
   // Keep the vehicle on the ground plane after every registration (height, roll and pitch
   // zero): flat2d's ground vehicles on flat ground. Without it a pitch bias of a few tenths
   // of a degree climbs tens of metres over a kilometre.
