@@ -125,6 +125,35 @@ LocalMapCut CutIntoLocalMaps(std::span<const Eigen::Isometry3d> estimate, double
   return cut;
 }
 
+RevisitTruth RevisitsOf(std::span<const Eigen::Isometry3d> truth, const LocalMapCut& cut, const LoopEvalOptions& options) {
+  RevisitTruth t;
+  const int maps = static_cast<int>(cut.maps.size());
+  for (const auto& map : cut.maps) t.informative.push_back(loops::IsInformative(map.map_T_pose, options.candidates.min_spread_m));
+  for (int c = 0; c < maps; ++c) {
+    for (int r = 0; r < c; ++r) {
+      const auto& past = cut.maps[static_cast<std::size_t>(r)];
+      const auto& newest = cut.maps[static_cast<std::size_t>(c)];
+      if (newest.path_start_m - past.path_start_m < options.candidates.min_path_separation_m) continue;
+      const PairTruth pair = TruthOf(truth, cut, r, c, options.revisit_radius_m);
+      if (pair.overlap < options.min_overlap) continue;
+      if (!pair.same_direction) {
+        ++t.opposite_revisits;
+        continue;
+      }
+      t.revisit_pairs.insert({r, c});
+      if (t.informative[static_cast<std::size_t>(r)] && t.informative[static_cast<std::size_t>(c)]) t.informative_pairs.insert({r, c});
+    }
+  }
+  return t;
+}
+
+CandidateScore ScoreCandidates(std::span<const Eigen::Isometry3d> truth, const LocalMapCut& cut, const RevisitTruth& revisits,
+                               const std::vector<loops::LoopCandidate>& candidates, const LoopEvalOptions& options) {
+  CandidateScore score;
+  Score(truth, cut, candidates, revisits.revisit_pairs, revisits.informative_pairs, options, score);
+  return score;
+}
+
 LoopEvalReport EvaluateLoopCandidates(std::span<const Eigen::Isometry3d> truth, const LoopEvalOptions& options) {
   LoopEvalReport report;
   const std::vector<Eigen::Isometry3d> estimate = DriftedTrajectory(truth, options.drift);
@@ -134,28 +163,11 @@ LoopEvalReport EvaluateLoopCandidates(std::span<const Eigen::Isometry3d> truth, 
   report.final_drift_m = (estimate.back().translation() - truth.back().translation()).norm();
   const LocalMapCut cut = CutIntoLocalMaps(estimate, options.piece_length_m);
   report.maps = static_cast<int>(cut.maps.size());
-  std::vector<bool> informative;
-  for (const auto& map : cut.maps) informative.push_back(loops::IsInformative(map.map_T_pose, options.candidates.min_spread_m));
-  for (const bool i : informative) report.informative_maps += i ? 1 : 0;
-
-  std::set<std::pair<int, int>> revisit_pairs, informative_pairs;
-  for (int c = 0; c < report.maps; ++c) {
-    for (int r = 0; r < c; ++r) {
-      const auto& past = cut.maps[static_cast<std::size_t>(r)];
-      const auto& newest = cut.maps[static_cast<std::size_t>(c)];
-      if (newest.path_start_m - past.path_start_m < options.candidates.min_path_separation_m) continue;
-      const PairTruth pair = TruthOf(truth, cut, r, c, options.revisit_radius_m);
-      if (pair.overlap < options.min_overlap) continue;
-      if (!pair.same_direction) {
-        ++report.opposite_revisits;
-        continue;
-      }
-      revisit_pairs.insert({r, c});
-      if (informative[static_cast<std::size_t>(r)] && informative[static_cast<std::size_t>(c)]) informative_pairs.insert({r, c});
-    }
-  }
-  report.revisits = static_cast<int>(revisit_pairs.size());
-  report.informative_revisits = static_cast<int>(informative_pairs.size());
+  const RevisitTruth revisits = RevisitsOf(truth, cut, options);
+  for (const bool i : revisits.informative) report.informative_maps += i ? 1 : 0;
+  report.opposite_revisits = revisits.opposite_revisits;
+  report.revisits = static_cast<int>(revisits.revisit_pairs.size());
+  report.informative_revisits = static_cast<int>(revisits.informative_pairs.size());
 
   std::vector<loops::LoopCandidate> by_distance, by_shape;
   const auto start = std::chrono::steady_clock::now();
@@ -168,8 +180,8 @@ LoopEvalReport EvaluateLoopCandidates(std::span<const Eigen::Isometry3d> truth, 
     const auto found = loops::DistanceCandidates(cut.maps, c, options.candidates);
     by_distance.insert(by_distance.end(), found.begin(), found.end());
   }
-  Score(truth, cut, by_distance, revisit_pairs, informative_pairs, options, report.distance);
-  Score(truth, cut, by_shape, revisit_pairs, informative_pairs, options, report.shape);
+  report.distance = ScoreCandidates(truth, cut, revisits, by_distance, options);
+  report.shape = ScoreCandidates(truth, cut, revisits, by_shape, options);
   return report;
 }
 

@@ -16,7 +16,9 @@
 #pragma once
 
 #include <cstdint>
+#include <set>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -79,6 +81,20 @@ struct LoopEvalReport {
     return informative_revisits > 0 ? static_cast<double>(s.revisits_found) / informative_revisits : 0.0;
   }
 };
+
+// Step 3 alone, for any cut (a build's local maps with the truth at their poses).
+struct RevisitTruth {
+  std::vector<bool> informative;                      // per map
+  std::set<std::pair<int, int>> revisit_pairs;        // same direction, (reference, current)
+  std::set<std::pair<int, int>> informative_pairs;    // ... both maps informative
+  int opposite_revisits = 0;
+};
+RevisitTruth RevisitsOf(std::span<const Eigen::Isometry3d> truth, const LocalMapCut& cut, const LoopEvalOptions& options);
+
+// Step 4's scoring of any candidates (or closures: reference_T_current the registered
+// transform) against RevisitsOf's truth.
+CandidateScore ScoreCandidates(std::span<const Eigen::Isometry3d> truth, const LocalMapCut& cut, const RevisitTruth& revisits,
+                               const std::vector<loops::LoopCandidate>& candidates, const LoopEvalOptions& options);
 
 LoopEvalReport EvaluateLoopCandidates(std::span<const Eigen::Isometry3d> truth, const LoopEvalOptions& options);
 
