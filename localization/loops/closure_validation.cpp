@@ -1,0 +1,84 @@
+#include "localization/loops/closure_validation.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <Eigen/Eigenvalues>
+
+#include "localization/registration/correspondence_finder.hpp"
+#include "localization/registration/nicp.hpp"
+
+namespace flat2d::localization::loops {
+namespace {
+
+// How far off its plane a flat pair pulls in full under the shipped K (nicp_options.hpp).
+constexpr double kWinsorizedReachM = 0.1;
+
+std::size_t PointsWithNormals(const maps::range3d::SurfelCloud& cloud) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) n += cloud.has_normal(i) ? 1 : 0;
+  return n;
+}
+
+std::string Format(const char* format, double a, double b) {
+  char text[160];
+  std::snprintf(text, sizeof text, format, a, b);
+  return text;
+}
+
+// The rounds of step 1: NICP from the guess with eps_d shrinking.
+registration::RegistrationResult RegisterInRounds(const maps::range3d::SurfelCloud& reference,
+                                                  const maps::range3d::SurfelCloud& current, const Eigen::Isometry3d& guess,
+                                                  const ClosureValidationOptions& options) {
+  registration::KdTreeCorrespondenceFinder finder(reference, options.nicp.kdtree_alpha);
+  registration::RegistrationResult result;
+  result.target_T_source = guess;
+  for (const float distance : options.round_distances_m) {
+    registration::NicpOptions round = options.nicp;
+    round.max_distance_m = distance;
+    // K of Eq. 4.11 grown with the round's reach: under the shipped K a flat pair stops
+    // pulling 10 cm off its plane, and pairs a lane apart would barely move the map.
+    const double reach = std::max(1.0, static_cast<double>(distance) / kWinsorizedReachM);
+    round.chi2_bound = options.nicp.chi2_bound * reach * reach;
+    registration::Nicp nicp(round);
+    result = nicp.Register(reference, finder, current, result.target_T_source);
+    if (!result.ok()) break;
+  }
+  return result;
+}
+
+}  // namespace
+
+ClosureValidation ValidateClosure(const maps::range3d::SurfelCloud& reference, const maps::range3d::SurfelCloud& current,
+                                  const Eigen::Isometry3d& guess, const ClosureValidationOptions& options) {
+  ClosureValidation v;
+  v.result = RegisterInRounds(reference, current, guess, options);
+  if (!v.result.ok()) {
+    v.reason = std::string("registration failed: ") + registration::FailureName(v.result.failure);
+    return v;
+  }
+  const std::size_t smaller = std::min(PointsWithNormals(reference), PointsWithNormals(current));
+  v.inlier_share = smaller > 0 ? static_cast<double>(v.result.inliers) / static_cast<double>(smaller) : 0.0;
+  v.chi2_per_inlier = v.result.inliers > 0 ? v.result.chi2 / v.result.inliers : 0.0;
+  if (v.result.inliers > 0) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> translation(v.result.information.topLeftCorner<3, 3>());
+    v.weakest_translation_information = translation.eigenvalues()(0) / v.result.inliers;
+  }
+  const Eigen::Isometry3d correction = guess.inverse() * v.result.target_T_source;
+  const double correction_m = correction.translation().norm();
+  const double correction_rad = Eigen::AngleAxisd(correction.rotation()).angle();
+  if (!v.result.target_T_source.matrix().allFinite()) {
+    v.reason = "registration diverged";
+  } else if (v.inlier_share < options.min_inlier_share) {
+    v.reason = Format("inliers %.3f of the smaller map, below %.3f", v.inlier_share, options.min_inlier_share);
+  } else if (v.chi2_per_inlier > options.max_chi2_per_inlier) {
+    v.reason = Format("chi2 per inlier %.3f above %.3f", v.chi2_per_inlier, options.max_chi2_per_inlier);
+  } else if (correction_m > options.max_correction_m || correction_rad > options.max_correction_rad) {
+    v.reason = Format("moved %.2f m / %.3f rad from the guess", correction_m, correction_rad);
+  } else {
+    v.accepted = true;
+  }
+  return v;
+}
+
+}  // namespace flat2d::localization::loops

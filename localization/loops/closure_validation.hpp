@@ -1,0 +1,62 @@
+// Validation of a loop-closure candidate by registering the two local maps (thesis 6.3.2):
+// NICP with KD-tree correspondences on (p, alpha n), alpha = 1/3 (Eq. 6.10), from the
+// candidate's guess T*. The maps are unorganized clouds (merged models), hence the KD-tree.
+//
+// Steps:
+//   1. NICP in rounds of shrinking pair distance (eps_d of Eq. 5.6: 2 m, 1 m, 0.5 m), each
+//      from the last: T* is a path alignment, up to a lane off (loop_candidates.hpp), more
+//      than the 0.5 m of Eq. 5.6 reaches.
+//   2. Accepted when the last round succeeds and
+//      - its inliers are at least min_inlier_share of the smaller map's points with normals
+//        (the maps overlap),
+//      - their mean chi2 is at most max_chi2_per_inlier (they lie on each other), and
+//      - NICP moved the map no more than max_correction from T* (the basin: a candidate
+//        that slides along a corridor to some other fit is not the one proposed).
+// The thesis states no limits; these were chosen on the simulated office and campus drives
+// (docs/benchmarks.md, "Local-map SLAM").
+#pragma once
+
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "localization/registration/nicp_options.hpp"
+#include "localization/registration/registration_result.hpp"
+#include "maps/range3d/surfel_cloud.hpp"
+
+namespace flat2d::localization::loops {
+
+struct ClosureValidationOptions {
+  registration::NicpOptions nicp = DefaultNicp();
+  float round_distances_m[3] = {2.0F, 1.0F, 0.5F};  // eps_d of each round
+  double min_inlier_share = 0.25;
+  double max_chi2_per_inlier = 2.0;
+  double max_correction_m = 3.0;
+  double max_correction_rad = 0.2;
+
+  static registration::NicpOptions DefaultNicp() {
+    registration::NicpOptions nicp;
+    nicp.kdtree_alpha = 1.0F / 3.0F;  // Eq. 6.10
+    nicp.iterations = 10;
+    nicp.normal_weight = 9.0;  // normals fitted over R = 0.3 m (nicp_options.hpp: (R / 0.1 m)^2)
+    return nicp;
+  }
+};
+
+struct ClosureValidation {
+  bool accepted = false;
+  std::string reason;  // why not, when rejected
+  registration::RegistrationResult result;  // reference_T_current in result.target_T_source
+  double inlier_share = 0.0;
+  double chi2_per_inlier = 0.0;
+  // The smallest eigenvalue of H's translation block per inlier (1/m^2): how well the
+  // weakest direction is held. Low along a straight corridor or road.
+  double weakest_translation_information = 0.0;
+};
+
+// `reference` and `current`: the two maps' points with their statistics, each in its own
+// map frame; `guess`: reference_T_current from the candidate.
+ClosureValidation ValidateClosure(const maps::range3d::SurfelCloud& reference, const maps::range3d::SurfelCloud& current,
+                                  const Eigen::Isometry3d& guess, const ClosureValidationOptions& options);
+
+}  // namespace flat2d::localization::loops
