@@ -18,6 +18,7 @@
 #include "localization/tools/calibrated_odometry.hpp"
 #include "localization/tools/drive_map_build.hpp"
 #include "localization/tools/gnss_track.hpp"
+#include "localization/tools/catacomb_command.hpp"
 #include "localization/tools/nicp_build_command.hpp"
 #include "localization/tools/nicp_drive_command.hpp"
 #include "localization/tools/prior_map_output.hpp"
@@ -54,6 +55,7 @@ constexpr const char* kUsage = R"(usage:
   flat2d-map features INPUT [--revolution N] [--json] [--png OUT] [options]
   flat2d-map calibrate DRIVE [DRIVE2] [--json] [options]
   flat2d-map build --mode landmarks DRIVE.pcap --out DIR --can LOG --dbc DBC --odometry CONFIG [options]
+  flat2d-map build --mode catacomb DRIVE.pcap --out DIR [--can LOG --dbc DBC --odometry CONFIG] [options]
 
 build: keyframes every --keyframe-distance metres or --keyframe-angle radians, each
 scan-matched against the previous keyframes (tracking) and against earlier keyframes near
@@ -327,12 +329,14 @@ void WriteTrajectoryOrFail(const std::vector<TimedPose>& trajectory, const std::
   if (Status s = localization::evaluation::WriteTrajectory(trajectory, *path); !s.ok()) Fail(2, s.error().message);
 }
 
-// The value of --mode: grid (the default), nicp or landmarks.
+// The value of --mode: grid (the default), nicp, landmarks or catacomb.
 std::string_view BuildMode(int argc, char** argv) {
   for (int i = 0; i + 1 < argc; ++i) {
     if (std::string_view(argv[i]) != "--mode") continue;
     const std::string_view mode = argv[i + 1];
-    if (mode != "nicp" && mode != "grid" && mode != "landmarks") Fail(1, "build: --mode is grid (default), nicp or landmarks");
+    if (mode != "nicp" && mode != "grid" && mode != "landmarks" && mode != "catacomb") {
+      Fail(1, "build: --mode is grid (default), nicp, landmarks or catacomb");
+    }
     return mode;
   }
   return "grid";
@@ -341,6 +345,7 @@ std::string_view BuildMode(int argc, char** argv) {
 int Build(int argc, char** argv) {
   const std::string_view mode = BuildMode(argc, argv);
   if (mode == "landmarks") return localization::tools::LandmarkDriveCommand(argc, argv);
+  if (mode == "catacomb") return localization::tools::CatacombCommand(argc, argv);
   if (mode == "nicp") {
     return localization::tools::IsDriveBuild(argc, argv) ? localization::tools::NicpDriveCommand(argc, argv)
                                                          : localization::tools::NicpBuildCommand(argc, argv);
@@ -463,7 +468,8 @@ int main(int argc, char** argv) {
   if (command == "--help" || command == "-h") {
     std::cout << kUsage << localization::tools::kNicpBuildUsage << localization::tools::kNicpDriveUsage
               << localization::tools::kRegisterUsage << localization::tools::kFeaturesUsage
-              << localization::tools::kLandmarkDriveUsage << localization::tools::kCalibrateUsage;
+              << localization::tools::kLandmarkDriveUsage << localization::tools::kCalibrateUsage
+              << localization::tools::kCatacombUsage;
     return 0;
   }
   Fail(1, std::string("unknown or missing command\n") + kUsage);

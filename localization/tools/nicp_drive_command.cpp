@@ -71,58 +71,69 @@ constexpr std::string_view kTool = "flat2d-map";
 
 bool IsCapture(std::string_view path) { return path.ends_with(".pcap") || path.ends_with(".pcapng"); }
 
-struct Args {
-  std::string out;
-  std::optional<std::string> config, anchor;
-  NicpDriveOptions options;
-  bool json = false;
-};
+}  // namespace
+
+bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a) {
+  const std::string_view arg = argv[i];
+  auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
+  auto integer = [&](std::int64_t max) { return static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, max)); };
+  if (arg == "--mode") value();  // checked by the caller
+  else if (arg == "--out") a.out = value();
+  else if (arg == "--can") a.options.can_log = value();
+  else if (arg == "--dbc") a.options.dbc = value();
+  else if (arg == "--odometry") a.options.odometry_config = value();
+  else if (arg == "--config") a.config = value();
+  else if (arg == "--anchor") a.anchor = value();
+  else if (arg == "--method") {
+    const auto method = registration::ParseMethod(value());
+    if (!method) Fail(1, "build DRIVE: --method is nicp or point-to-plane");
+    a.options.method = *method;
+  } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
+  else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
+  else if (arg == "--no-deskew") a.options.deskew = false;
+  else if (arg == "--planar") a.options.planar = true;
+  else if (arg == "--ground-clearance") a.options.ground_clearance_m = maps::cli::ParseNumber(kTool, arg, value());
+  else if (arg == "--ground-range") a.options.ground_range_m = maps::cli::ParseNumber(kTool, arg, value());
+  else if (arg == "--no-map") a.options.build_map = false;
+  else if (arg == "--json") a.json = true;
+  else if (IsCapture(arg) && a.options.capture.empty()) a.options.capture = std::string(arg);
+  else return false;
+  return true;
+}
+
+void CheckNicpDriveArgs(const NicpDriveArgs& a, const std::string& mode, const char* usage) {
+  if (a.options.capture.empty() || a.out.empty()) Fail(1, "build --mode " + mode + " needs DRIVE and --out DIR\n" + usage);
+  const bool can = a.options.can_log.has_value();
+  if (can != a.options.dbc.has_value() || can != a.options.odometry_config.has_value()) {
+    Fail(1, "build --mode " + mode + " DRIVE: --can, --dbc and --odometry go together");
+  }
+}
+
+namespace {
+
+using Args = NicpDriveArgs;
 
 Args ParseArgs(int argc, char** argv) {
   Args a;
   for (int i = 0; i < argc; ++i) {
     const std::string_view arg = argv[i];
+    if (ParseNicpDriveFlag(argc, argv, i, a)) continue;
     auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
-    auto integer = [&](std::int64_t max) { return static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, max)); };
-    if (arg == "--mode") value();  // nicp: checked by the caller
-    else if (arg == "--out") a.out = value();
-    else if (arg == "--can") a.options.can_log = value();
-    else if (arg == "--dbc") a.options.dbc = value();
-    else if (arg == "--odometry") a.options.odometry_config = value();
-    else if (arg == "--config") a.config = value();
-    else if (arg == "--anchor") a.anchor = value();
-    else if (arg == "--method") {
-      const auto method = registration::ParseMethod(value());
-      if (!method) Fail(1, "build --mode nicp DRIVE: --method is nicp or point-to-plane");
-      a.options.method = *method;
-    } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
-    else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
-    else if (arg == "--tracking") {
+    if (arg == "--tracking") {
       const std::string_view tracking = value();
       if (tracking != "model" && tracking != "keyframe") Fail(1, "build --mode nicp DRIVE: --tracking is model or keyframe");
       a.options.frame_to_model = tracking == "model";
-    } else if (arg == "--no-deskew") a.options.deskew = false;
-    else if (arg == "--planar") a.options.planar = true;
-    else if (arg == "--keyframe-distance") a.options.keyframe_distance_m = maps::cli::ParseNumber(kTool, arg, value());
+    } else if (arg == "--keyframe-distance") a.options.keyframe_distance_m = maps::cli::ParseNumber(kTool, arg, value());
     else if (arg == "--keyframe-angle") a.options.keyframe_angle_rad = maps::cli::ParseNumber(kTool, arg, value());
-    else if (arg == "--ground-clearance") a.options.ground_clearance_m = maps::cli::ParseNumber(kTool, arg, value());
-    else if (arg == "--ground-range") a.options.ground_range_m = maps::cli::ParseNumber(kTool, arg, value());
-    else if (arg == "--no-map") a.options.build_map = false;
-    else if (arg == "--json") a.json = true;
-    else if (IsCapture(arg) && a.options.capture.empty()) a.options.capture = std::string(arg);
     else Fail(1, "build --mode nicp DRIVE: unknown argument " + std::string(arg) + "\n" + kNicpDriveUsage);
   }
-  if (a.options.capture.empty() || a.out.empty()) {
-    Fail(1, std::string("build --mode nicp needs DRIVE and --out DIR\n") + kNicpDriveUsage);
-  }
-  const bool can = a.options.can_log.has_value();
-  if (can != a.options.dbc.has_value() || can != a.options.odometry_config.has_value()) {
-    Fail(1, "build --mode nicp DRIVE: --can, --dbc and --odometry go together");
-  }
+  CheckNicpDriveArgs(a, "nicp", kNicpDriveUsage);
   return a;
 }
 
-void Prepare(Args& a) {
+}  // namespace
+
+void PrepareNicpDrive(NicpDriveArgs& a) {
   auto grid = maps::LoadStructureGridOptions(a.config.value_or(ShippedGridConfig()));
   if (!grid.ok()) Fail(2, grid.error().message);
   a.options.grid = *grid;
@@ -133,6 +144,8 @@ void Prepare(Args& a) {
     a.options.anchor = std::move(*anchor);
   }
 }
+
+namespace {
 
 // Writes the files; returns the map's viewpoints.
 std::size_t WriteOutputs(const Args& a, NicpDriveResult& r) {
@@ -182,7 +195,7 @@ bool IsDriveBuild(int argc, char** argv) {
 
 int NicpDriveCommand(int argc, char** argv) {
   Args a = ParseArgs(argc, argv);
-  Prepare(a);
+  PrepareNicpDrive(a);
   auto tracked = TrackDriveByNicp(a.options);
   if (!tracked.ok()) Fail(2, tracked.error().message);
   NicpDriveResult& r = *tracked;

@@ -1,0 +1,153 @@
+#!/usr/bin/env python3
+"""flat2d-map build --mode catacomb DRIVE as users call it: local-map 3D SLAM of a simulated
+drive that comes back to its start (the campus lap, VLP-16, --planar), its files (g2o graph, TUM
+trajectories, PLY map, closures, local maps on disk, prior map), the closures and the
+trajectory against the simulator's truth, closure edits, and exit statuses on bad input.
+
+usage: catacomb_cli_test.py FLAT2D_MAP FLAT2D_EVAL FLAT2D_SIM SOURCE_DIR WORK_DIR [quick]
+Needs no shared data (the simulator makes the drive). "quick" (the sanitizer build) tracks
+the first 60 revolutions and checks the files and errors, not the accuracy.
+"""
+import json
+import os
+import subprocess
+import sys
+import unittest
+
+MAP, EVAL, SIM, SOURCE, WORK = sys.argv[1:6]
+QUICK = len(sys.argv) > 6 and sys.argv[6] == "quick"
+SIM_ODOMETRY = os.path.join(SOURCE, "packaging", "config", "odometry", "flat2d_sim.textproto")
+# Measured on this drive (1144 m at 9 m/s, 213 local maps): ATE 0.33 m after the loop closes
+# (tracking alone 0.47 m, CAN odometry 1.43 m), 4 closures kept; the bound leaves 1.5x.
+ATE_RMSE_M = 0.5
+
+
+def run(tool, *args):
+    return subprocess.run([tool, *args], capture_output=True, text=True, timeout=1200)
+
+
+class Catacomb(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        os.makedirs(WORK, exist_ok=True)
+        cls.drive = os.path.join(WORK, "campus")
+        result = run(SIM, "--world", "campus", "--drive", "0", "--seed", "2", "--sensor", "vlp16", "--out", cls.drive)
+        assert result.returncode == 0, result.stderr
+        d = cls.drive
+        cls.pcap = os.path.join(d, "lidar.pcap")
+        cls.truth = os.path.join(d, "truth.tum")
+        cls.can = ["--can", os.path.join(d, "can.log"), "--dbc", os.path.join(d, "vehicle.dbc"),
+                   "--odometry", SIM_ODOMETRY]
+        cls.out = os.path.join(WORK, "campus_catacomb")
+        cls.frames = ["--max-frames", "60"] if QUICK else []
+        cls.build = run(MAP, "build", "--mode", "catacomb", cls.pcap, *cls.can, "--planar", "--anchor", cls.truth,
+                        "--truth", cls.truth, *cls.frames, "--out", cls.out, "--json")
+
+    def summary(self):
+        self.assertEqual(self.build.returncode, 0, self.build.stderr)
+        return json.loads(self.build.stdout)
+
+    def test_summary_and_files(self):
+        s = self.summary()
+        for key in ("frames", "failures", "local_maps", "candidates", "candidates_distance", "candidates_shape",
+                    "validated", "accepted", "closures_kept", "solve_seconds", "graph_cost_initial", "graph_cost_final",
+                    "drift_percent", "closure_precision", "closure_recall", "local_map_rpe_mean_m"):
+            self.assertIn(key, s)
+        self.assertEqual(s["sensor"], "vlp16")
+        self.assertEqual(s["failures"], 0)
+        # A local map every 5 m: the quick run's 60 revolutions at 9 m/s are 54 m.
+        self.assertGreaterEqual(s["local_maps"], 10 if QUICK else 200)
+        with open(os.path.join(self.out, "trajectory.tum")) as f:
+            poses = [l for l in f if not l.startswith("#")]
+        self.assertEqual(len(poses), s["frames"])
+        with open(os.path.join(self.out, "graph.g2o")) as f:
+            records = [l.split()[0] for l in f if l.strip()]
+        self.assertEqual(records.count("VERTEX_SE3:QUAT"), s["local_maps"])
+        # The chain, then one closure per pair of maps accepted (kept or dropped by the kernel).
+        self.assertGreaterEqual(records.count("EDGE_SE3:QUAT"), s["local_maps"] - 1 + s["closures_kept"])
+        for name in ("tracking.tum", "odometry.tum", "map.ply", "closures.txt", "map.f2m", "map.png",
+                     os.path.join("local_maps", "map_0000.ply"), os.path.join("local_maps", "map_0000.tum")):
+            self.assertGreater(os.path.getsize(os.path.join(self.out, name)), 50, name)
+        with open(os.path.join(self.out, "map.ply"), "rb") as f:
+            header = f.read(400)
+        self.assertIn(b"property float nx", header)
+
+    def test_trajectory_against_the_truth(self):
+        s = self.summary()
+        errors = {}
+        for name in ("trajectory", "tracking", "odometry"):
+            result = run(EVAL, "traj", "--3d", "--truth", self.truth, "--est", os.path.join(self.out, name + ".tum"),
+                         "--json")
+            self.assertEqual(result.returncode, 0, result.stderr)
+            errors[name] = json.loads(result.stdout)["ate_rmse_m"]
+        print(f"ATE: SLAM {errors['trajectory']:.4f} m, tracking {errors['tracking']:.4f} m, odometry "
+              f"{errors['odometry']:.4f} m; {s['local_maps']} maps, {s['candidates']} candidates, {s['accepted']} "
+              f"accepted, {s['closures_kept']} kept, precision {s['closure_precision']:.2f}, recall "
+              f"{s['closure_recall']:.2f}", file=sys.stderr)
+        if QUICK:
+            return
+        self.assertLess(errors["trajectory"], ATE_RMSE_M, errors)
+        self.assertLess(errors["trajectory"], errors["tracking"], errors)
+        self.assertLess(errors["tracking"], errors["odometry"], errors)
+        self.assertGreater(s["closures_kept"], 0, s)
+        self.assertEqual(s["closures_correct"], s["closures_kept"], s)  # within 0.3 m and 1 deg of the truth
+
+    def test_closure_edits(self):
+        s = self.summary()
+        if s["local_maps"] < 3:
+            self.skipTest("too few maps")
+        edits = os.path.join(WORK, "edits.txt")
+        with open(edits, "w") as f:
+            f.write("# one closure added by hand\nadd 0 2 0 0 0 0 0 0 1\nremove 0 1\n")
+        out = os.path.join(WORK, "campus_edited")
+        result = run(MAP, "build", "--mode", "catacomb", self.pcap, *self.can, "--max-frames", "60", "--no-map",
+                     "--no-loops", "--closures", edits, "--out", out, "--json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        e = json.loads(result.stdout)
+        self.assertEqual((e["edits_added"], e["edits_removed"], e["candidates"]), (1, 1, 0))
+        with open(os.path.join(out, "closures.txt")) as f:
+            self.assertIn("0 2 edit", f.read())
+
+    def test_bad_input(self):
+        out = os.path.join(WORK, "bad")
+        # A capture that is missing: status 2, naming it.
+        result = run(MAP, "build", "--mode", "catacomb", "/nonexistent/drive.pcap", "--out", out)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("/nonexistent/drive.pcap", result.stderr)
+        # A capture of another kind (not Velodyne): 2, naming the file.
+        garbled = os.path.join(WORK, "garbled.pcap")
+        with open(garbled, "wb") as f:
+            f.write(b"not a capture at all" * 10)
+        result = run(MAP, "build", "--mode", "catacomb", garbled, "--out", out)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("garbled.pcap", result.stderr)
+        # A CAN log that is not there: 2, naming it.
+        result = run(MAP, "build", "--mode", "catacomb", self.pcap, "--can", "/nonexistent/can.log", "--dbc",
+                     os.path.join(self.drive, "vehicle.dbc"), "--odometry", SIM_ODOMETRY, "--out", out)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("/nonexistent/can.log", result.stderr)
+        # A malformed closure edit: 2, naming the file and line.
+        edits = os.path.join(WORK, "bad_edits.txt")
+        with open(edits, "w") as f:
+            f.write("add 0 2 0 0 0 0 0 0 1\nremove 0\n")
+        result = run(MAP, "build", "--mode", "catacomb", self.pcap, "--closures", edits, "--out", out)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("bad_edits.txt: line 2", result.stderr)
+        # An edit naming a map the drive does not have: 2.
+        with open(edits, "w") as f:
+            f.write("remove 0 999\n")
+        result = run(MAP, "build", "--mode", "catacomb", self.pcap, *self.can, "--max-frames", "30", "--no-map",
+                     "--closures", edits, "--out", out)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("remove 0 999", result.stderr)
+        # Usage: 1.
+        self.assertEqual(run(MAP, "build", "--mode", "catacomb", self.pcap).returncode, 1)  # no --out
+        self.assertEqual(run(MAP, "build", "--mode", "catacomb", self.pcap, "--out", out, "--inject-false",
+                             "1.5").returncode, 1)
+        self.assertEqual(run(MAP, "build", "--mode", "catacomb", self.pcap, "--out", out, "--frobnicate").returncode, 1)
+        self.assertEqual(run(MAP, "build", "--mode", "catacomb", self.pcap, "--can", "x.log", "--out",
+                             out).returncode, 1)
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1], verbosity=2)
