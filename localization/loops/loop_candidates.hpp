@@ -26,7 +26,10 @@ struct LoopCandidateOptions {
 
   // (b)
   double min_spread_m = 0.05;       // both maps informative: second spread at least this
-  double context_m = 30.0;          // path either side of each map that the fit may use
+  // Path either side of each map that the fit may use. 15 m: in the simulated office the
+  // revisits come in from other corridors and 30 m found neither informative revisit, 15 m
+  // both; on KITTI 00 (seed 1) 15 m and 30 m find the same 6 of 12.
+  double context_m = 15.0;
   // Maps whose internal rotations (first to last pose) differ more than this are not tried.
   double max_turn_difference_rad = 0.35;
   // Associations tried per past map, each of one of its poses with the newest map's middle

@@ -85,7 +85,10 @@ struct CatacombOptions {
 
   static loops::LoopCandidateOptions DefaultCandidates() {
     loops::LoopCandidateOptions o;
-    o.drift_fraction = 0.05;  // KITTI 00: precision 0.04 without, 0.46 with (docs/benchmarks.md)
+    // The drift bound (KITTI 00: candidate precision 0.04 without, 0.46 at 0.05), wider here
+    // for the chain broken by 1 m / 5 deg that closures must repair; NICP validation and
+    // the robust kernel stand behind it.
+    o.drift_fraction = 0.1;
     return o;
   }
 };

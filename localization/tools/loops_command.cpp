@@ -37,7 +37,7 @@ direction, both informative) with a correct candidate. Precision: correct / all 
   --radius M               (a)'s search radius (default 10)
   --min-separation M       maps nearer than this along the drive are not loops (default 50)
   --min-spread M           informative: second spread of the map's path (default 0.05)
-  --context M              path either side of a map used by the fit (default 30)
+  --context M              path either side of a map used by the fit (default 15)
   --association-spacing M  associations along each past map, from a random first (default 1.5)
   --seed N                 the random seed (default 1)
   --max-turn-difference D  maps whose own turns differ more are not fitted (deg, default 20)
