@@ -31,7 +31,9 @@ class Catacomb(unittest.TestCase):
     def setUpClass(cls):
         os.makedirs(WORK, exist_ok=True)
         cls.drive = os.path.join(WORK, "campus")
-        result = run(SIM, "--world", "campus", "--drive", "0", "--seed", "2", "--sensor", "vlp16", "--out", cls.drive)
+        duration = ["--duration", "8"] if QUICK else []
+        result = run(SIM, "--world", "campus", "--drive", "0", "--seed", "2", "--sensor", "vlp16", *duration,
+                     "--out", cls.drive)
         assert result.returncode == 0, result.stderr
         d = cls.drive
         cls.pcap = os.path.join(d, "lidar.pcap")
@@ -55,8 +57,8 @@ class Catacomb(unittest.TestCase):
             self.assertIn(key, s)
         self.assertEqual(s["sensor"], "vlp16")
         self.assertEqual(s["failures"], 0)
-        # A local map every 5 m: the quick run's 60 revolutions at 9 m/s are 54 m.
-        self.assertGreaterEqual(s["local_maps"], 10 if QUICK else 200)
+        # A local map every 5 m: the quick run's 60 revolutions, from standing, are about 20 m.
+        self.assertGreaterEqual(s["local_maps"], 3 if QUICK else 200)
         with open(os.path.join(self.out, "trajectory.tum")) as f:
             poses = [l for l in f if not l.startswith("#")]
         self.assertEqual(len(poses), s["frames"])
