@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 
-#include <Eigen/Eigenvalues>
-
 #include "localization/registration/correspondence_finder.hpp"
 #include "localization/registration/nicp.hpp"
 
@@ -60,10 +58,6 @@ ClosureValidation ValidateClosure(const maps::range3d::SurfelCloud& reference, c
   const std::size_t smaller = std::min(PointsWithNormals(reference), PointsWithNormals(current));
   v.inlier_share = smaller > 0 ? static_cast<double>(v.result.inliers) / static_cast<double>(smaller) : 0.0;
   v.chi2_per_inlier = v.result.inliers > 0 ? v.result.chi2 / v.result.inliers : 0.0;
-  if (v.result.inliers > 0) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> translation(v.result.information.topLeftCorner<3, 3>());
-    v.weakest_translation_information = translation.eigenvalues()(0) / v.result.inliers;
-  }
   const Eigen::Isometry3d correction = guess.inverse() * v.result.target_T_source;
   const double correction_m = correction.translation().norm();
   const double correction_rad = Eigen::AngleAxisd(correction.rotation()).angle();

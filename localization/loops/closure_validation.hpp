@@ -49,9 +49,6 @@ struct ClosureValidation {
   registration::RegistrationResult result;  // reference_T_current in result.target_T_source
   double inlier_share = 0.0;
   double chi2_per_inlier = 0.0;
-  // The smallest eigenvalue of H's translation block per inlier (1/m^2): how well the
-  // weakest direction is held. Low along a straight corridor or road.
-  double weakest_translation_information = 0.0;
 };
 
 // `reference` and `current`: the two maps' points with their statistics, each in its own

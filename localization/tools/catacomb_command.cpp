@@ -215,15 +215,14 @@ const char* SourceName(const ClosureRecord& c) {
 // With the truth, each line adds the registered transform's error against it.
 void WriteClosures(const CatacombResult& r, const std::optional<ClosureTruth>& truth, const std::filesystem::path& path) {
   std::ofstream out(path);
-  out << "# reference current source verdict inlier_share chi2_per_inlier weakest_information dcs_scale"
+  out << "# reference current source verdict inlier_share chi2_per_inlier dcs_scale"
       << (truth ? " truth_error_m truth_error_deg" : "") << " reason\n";
   for (std::size_t i = 0; i < r.closures.size(); ++i) {
     const ClosureRecord& c = r.closures[i];
     char line[256];
-    std::snprintf(line, sizeof line, "%d %d %s %s %.4f %.4f %.3f %.4f", c.candidate.reference, c.candidate.current,
+    std::snprintf(line, sizeof line, "%d %d %s %s %.4f %.4f %.4f", c.candidate.reference, c.candidate.current,
                   SourceName(c), c.kept ? "kept" : c.factor ? "dropped" : c.validation.accepted ? "accepted" : "rejected",
-                  c.validation.inlier_share, c.validation.chi2_per_inlier, c.validation.weakest_translation_information,
-                  c.scale);
+                  c.validation.inlier_share, c.validation.chi2_per_inlier, c.scale);
     out << line;
     if (truth) {
       std::snprintf(line, sizeof line, " %.3f %.3f", truth->closure_errors[i].first, truth->closure_errors[i].second);
