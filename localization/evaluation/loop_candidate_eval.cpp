@@ -147,13 +147,6 @@ RevisitTruth RevisitsOf(std::span<const Eigen::Isometry3d> truth, const LocalMap
   return t;
 }
 
-CandidateScore ScoreCandidates(std::span<const Eigen::Isometry3d> truth, const LocalMapCut& cut, const RevisitTruth& revisits,
-                               const std::vector<loops::LoopCandidate>& candidates, const LoopEvalOptions& options) {
-  CandidateScore score;
-  Score(truth, cut, candidates, revisits.revisit_pairs, revisits.informative_pairs, options, score);
-  return score;
-}
-
 LoopEvalReport EvaluateLoopCandidates(std::span<const Eigen::Isometry3d> truth, const LoopEvalOptions& options) {
   LoopEvalReport report;
   const std::vector<Eigen::Isometry3d> estimate = DriftedTrajectory(truth, options.drift);
@@ -180,8 +173,8 @@ LoopEvalReport EvaluateLoopCandidates(std::span<const Eigen::Isometry3d> truth, 
     const auto found = loops::DistanceCandidates(cut.maps, c, options.candidates);
     by_distance.insert(by_distance.end(), found.begin(), found.end());
   }
-  report.distance = ScoreCandidates(truth, cut, revisits, by_distance, options);
-  report.shape = ScoreCandidates(truth, cut, revisits, by_shape, options);
+  Score(truth, cut, by_distance, revisits.revisit_pairs, revisits.informative_pairs, options, report.distance);
+  Score(truth, cut, by_shape, revisits.revisit_pairs, revisits.informative_pairs, options, report.shape);
   return report;
 }
 

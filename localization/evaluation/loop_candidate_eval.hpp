@@ -91,11 +91,6 @@ struct RevisitTruth {
 };
 RevisitTruth RevisitsOf(std::span<const Eigen::Isometry3d> truth, const LocalMapCut& cut, const LoopEvalOptions& options);
 
-// Step 4's scoring of any candidates (or closures: reference_T_current the registered
-// transform) against RevisitsOf's truth.
-CandidateScore ScoreCandidates(std::span<const Eigen::Isometry3d> truth, const LocalMapCut& cut, const RevisitTruth& revisits,
-                               const std::vector<loops::LoopCandidate>& candidates, const LoopEvalOptions& options);
-
 LoopEvalReport EvaluateLoopCandidates(std::span<const Eigen::Isometry3d> truth, const LoopEvalOptions& options);
 
 }  // namespace flat2d::localization::evaluation

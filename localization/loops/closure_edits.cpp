@@ -2,34 +2,19 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
+
+#include "hal/cloud/scalar.hpp"
 
 namespace flat2d::localization::loops {
 namespace {
-
-std::vector<std::string_view> Fields(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    if (i > start) fields.push_back(line.substr(start, i - start));
-  }
-  return fields;
-}
 
 bool ParseIndex(std::string_view field, int& index) {
   const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), index);
   return error == std::errc() && end == field.data() + field.size() && index >= 0;
 }
 
-bool ParseDouble(std::string_view field, double& value) {
-  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
-  return error == std::errc() && end == field.data() + field.size() && std::isfinite(value);
-}
+bool ParseFinite(std::string_view field, double& value) { return hal::cloud::ParseNumber(field, value) && std::isfinite(value); }
 
 // One line's edit into `edits`; an empty string when it parsed, else the problem.
 std::string ParseLine(const std::vector<std::string_view>& f, ClosureEdits& edits) {
@@ -47,7 +32,7 @@ std::string ParseLine(const std::vector<std::string_view>& f, ClosureEdits& edit
   }
   double v[7];
   for (int k = 0; k < 7; ++k) {
-    if (!ParseDouble(f[static_cast<std::size_t>(3 + k)], v[k])) return "field " + std::to_string(4 + k) + " is not a number";
+    if (!ParseFinite(f[static_cast<std::size_t>(3 + k)], v[k])) return "field " + std::to_string(4 + k) + " is not a number";
   }
   const Eigen::Quaterniond q(v[6], v[3], v[4], v[5]);
   if (std::abs(q.norm() - 1.0) > 1e-3) return "the quaternion is not unit length";
@@ -69,7 +54,7 @@ Result<ClosureEdits> ParseClosureEdits(std::string_view text, std::string_view s
     text = end == std::string_view::npos ? std::string_view() : text.substr(end + 1);
     ++line_number;
     line = line.substr(0, line.find('#'));
-    const std::vector<std::string_view> fields = Fields(line);
+    const std::vector<std::string_view> fields = hal::cloud::SplitWords(line);
     if (fields.empty()) continue;
     if (std::string problem = ParseLine(fields, edits); !problem.empty()) {
       return MakeError(std::string(source_name) + ": line " + std::to_string(line_number) + ": " + problem);
@@ -79,11 +64,9 @@ Result<ClosureEdits> ParseClosureEdits(std::string_view text, std::string_view s
 }
 
 Result<ClosureEdits> ReadClosureEdits(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return MakeError(path.string() + ": cannot open");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseClosureEdits(text.str(), path.string());
+  auto text = hal::cloud::ReadFileBytes(path);
+  if (!text.ok()) return text.error();
+  return ParseClosureEdits(*text, path.string());
 }
 
 }  // namespace flat2d::localization::loops

@@ -1,10 +1,8 @@
 #include "localization/tools/catacomb_build.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <map>
 #include <random>
-#include <set>
 #include <utility>
 
 #include "localization/loops/trajectory_shape.hpp"
@@ -83,6 +81,7 @@ class CatacombBuilder {
     if (drive.local_map_distance_m <= 0.0) drive.local_map_distance_m = 5.0;
     drive.frame_to_model = true;
     drive.build_map = false;
+    drive.model_every = 0;  // the nicp build's model.ply sample: the local maps hold the points
     Status written = Status::Ok();
     drive.on_local_map = [&](const TrackedLocalMap& map) {
       const int index = static_cast<int>(tracked_.size());
@@ -122,10 +121,9 @@ class CatacombBuilder {
   // The loop closer's view of each map: its tracked pose, internal trajectory, path start.
   void DescribeMaps() {
     const auto& trajectory = result_.drive.trajectory;
-    std::vector<double> path(trajectory.size(), 0.0);
-    for (std::size_t k = 1; k < trajectory.size(); ++k) {
-      path[k] = path[k - 1] + (trajectory[k].world_T_body.translation() - trajectory[k - 1].world_T_body.translation()).norm();
-    }
+    std::vector<Eigen::Isometry3d> poses;
+    for (const auto& pose : trajectory) poses.push_back(pose.world_T_body);
+    const std::vector<double> path = loops::ArcLengths(poses);
     for (const TrackedMap& map : tracked_) {
       loops::LocalMapTrajectory described;
       described.world_T_map = map.world_T_map;
@@ -139,12 +137,13 @@ class CatacombBuilder {
     }
   }
 
+  // Each map's internal trajectory (DescribeMaps') with the revolutions' stamps.
   Status WriteMapTrajectories() const {
-    for (std::size_t i = 0; i < tracked_.size(); ++i) {
+    for (std::size_t i = 0; i < result_.maps.size(); ++i) {
       std::vector<hal::trajectory::StampedPose> poses;
-      for (int k = tracked_[i].first_revolution; k <= tracked_[i].last_revolution; ++k) {
-        const auto& pose = result_.drive.trajectory[static_cast<std::size_t>(k)];
-        poses.push_back({pose.time_ns, tracked_[i].world_T_map.inverse() * pose.world_T_body});
+      const auto& map_T_pose = result_.maps[i].map_T_pose;
+      for (std::size_t k = 0; k < map_T_pose.size(); ++k) {
+        poses.push_back({result_.drive.trajectory[static_cast<std::size_t>(tracked_[i].first_revolution) + k].time_ns, map_T_pose[k]});
       }
       if (Status s = store_.WriteTrajectory(static_cast<int>(i), poses); !s.ok()) return s;
     }
@@ -192,12 +191,11 @@ class CatacombBuilder {
 
   Result<ClosureRecord> Validate(const loops::LoopCandidate& candidate, bool injected) {
     const Clock::time_point start = Clock::now();
+    // The newest map first: a read evicts the lowest index, never the newest.
     auto current = cache_.Get(candidate.current);
     if (!current.ok()) return current.error();
     auto reference = cache_.Get(candidate.reference);
     if (!reference.ok()) return reference.error();
-    current = cache_.Get(candidate.current);  // the reference's read may have evicted it
-    if (!current.ok()) return current.error();
     ClosureRecord record;
     record.candidate = candidate;
     record.injected = injected;

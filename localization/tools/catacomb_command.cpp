@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <string>
 #include <string_view>
@@ -13,6 +14,7 @@
 #include "hal/trajectory/pose_interpolation.hpp"
 #include "localization/evaluation/loop_candidate_eval.hpp"
 #include "localization/evaluation/trajectory_error.hpp"
+#include "localization/evaluation/trajectory_error_3d.hpp"
 #include "localization/graph/g2o_se3_io.hpp"
 #include "localization/graph/se3_costs.hpp"
 #include "localization/tools/catacomb_build.hpp"
@@ -109,7 +111,6 @@ Args ParseArgs(int argc, char** argv) {
 
 void Prepare(Args& a) {
   PrepareNicpDrive(a.drive);
-  if (a.drive.options.local_map_distance_m == 0.0) a.drive.options.local_map_distance_m = 5.0;
   a.options.drive = a.drive.options;
   a.options.out = a.drive.out;
   if (a.closures) {
@@ -124,16 +125,9 @@ std::vector<Eigen::Isometry3d> TruthAt(const std::vector<hal::trajectory::Stampe
                                        const std::vector<hal::trajectory::StampedPose>& at) {
   std::vector<Eigen::Isometry3d> poses;
   for (const auto& pose : at) {
-    const auto after = std::lower_bound(truth.begin(), truth.end(), pose.time_ns,
-                                        [](const hal::trajectory::StampedPose& p, TimeNs t) { return p.time_ns < t; });
-    if (after == truth.begin()) poses.push_back(truth.front().world_T_body);
-    else if (after == truth.end()) poses.push_back(truth.back().world_T_body);
-    else {
-      const auto before = after - 1;
-      const double fraction = static_cast<double>(pose.time_ns - before->time_ns) /
-                              static_cast<double>(after->time_ns - before->time_ns);
-      poses.push_back(hal::trajectory::InterpolatePose(before->world_T_body, after->world_T_body, fraction));
-    }
+    const auto interpolated = evaluation::InterpolatedPose(truth, pose.time_ns, std::numeric_limits<TimeNs>::max());
+    const bool before = pose.time_ns < truth.front().time_ns;
+    poses.push_back(interpolated ? *interpolated : before ? truth.front().world_T_body : truth.back().world_T_body);
   }
   return poses;
 }
@@ -183,8 +177,8 @@ ClosureTruth JudgeClosures(const Args& a, const CatacombResult& r, const std::ve
   std::tie(t.rpe_m, t.rpe_rad) = LocalMapRpe(optimized, truth_maps);
   std::tie(t.tracking_rpe_m, t.tracking_rpe_rad) = LocalMapRpe(tracked, truth_maps);
   for (const auto& c : r.closures) {
-    const Eigen::Isometry3d truth_T = sensor[static_cast<std::size_t>(r.first_revolution[static_cast<std::size_t>(c.candidate.reference)])].inverse() *
-                                      sensor[static_cast<std::size_t>(r.first_revolution[static_cast<std::size_t>(c.candidate.current)])];
+    const Eigen::Isometry3d truth_T = truth_maps[static_cast<std::size_t>(c.candidate.reference)].inverse() *
+                                      truth_maps[static_cast<std::size_t>(c.candidate.current)];
     const Eigen::Isometry3d error = truth_T.inverse() * c.validation.result.target_T_source;
     t.closure_errors.emplace_back(error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI);
   }
@@ -330,11 +324,7 @@ void PrintJson(const Args& a, const CatacombResult& r, const Counts& n, std::pai
               n.edits_added, a.options.edits.removals.size(), r.candidate_seconds,
               evaluation::PercentilesOf(r.validation_ms).p50, r.solve.seconds, r.solve.rounds, graph::G2oChi2(initial),
               graph::G2oChi2(r.graph), r.tracking_seconds, map.second, map.first);
-  double length = 0.0;
-  for (std::size_t i = 1; i < r.trajectory.size(); ++i) {
-    length += (r.trajectory[i].world_T_body.translation() - r.trajectory[i - 1].world_T_body.translation()).norm();
-  }
-  std::printf(", \"tracked_distance_m\": %.3f", length);
+  std::printf(", \"tracked_distance_m\": %.3f", PathLength(r.trajectory));
   if (!a.drive.options.anchor.empty()) {
     const Drift d = DriftAgainst(a.drive.options.anchor, r.trajectory);
     std::printf(", \"distance_m\": %.3f, \"drift_percent\": %.4f, \"end_error_m\": %.4f, \"max_error_m\": %.4f", d.distance_m,

@@ -166,13 +166,6 @@ std::size_t WriteOutputs(const Args& a, NicpDriveResult& r) {
   return written->viewpoints;
 }
 
-double PathLength(const std::vector<hal::trajectory::StampedPose>& trajectory) {
-  double length = 0.0;
-  for (std::size_t i = 1; i < trajectory.size(); ++i) {
-    length += (trajectory[i].world_T_body.translation() - trajectory[i - 1].world_T_body.translation()).norm();
-  }
-  return length;
-}
 
 void PrintDrift(const char* prefix, const Drift& d) {
   std::printf(", \"%sdrift_percent\": %.4f, \"%send_error_m\": %.4f, \"%smax_error_m\": %.4f, "
@@ -181,6 +174,14 @@ void PrintDrift(const char* prefix, const Drift& d) {
 }
 
 }  // namespace
+
+double PathLength(const std::vector<hal::trajectory::StampedPose>& trajectory) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < trajectory.size(); ++i) {
+    length += (trajectory[i].world_T_body.translation() - trajectory[i - 1].world_T_body.translation()).norm();
+  }
+  return length;
+}
 
 bool IsDriveBuild(int argc, char** argv) {
   // The flags of either mode that take no value.

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "localization/tools/nicp_drive_build.hpp"
 
@@ -31,6 +32,8 @@ struct NicpDriveArgs {
 bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a);
 // Exits with status 1 unless DRIVE and --out are given and the CAN flags go together.
 void CheckNicpDriveArgs(const NicpDriveArgs& a, const std::string& mode, const char* usage);
+// The length of a trajectory's path (m).
+double PathLength(const std::vector<hal::trajectory::StampedPose>& trajectory);
 // Loads the grid configuration and the anchor track; exits with status 2 when one cannot be read.
 void PrepareNicpDrive(NicpDriveArgs& a);
 
