@@ -43,4 +43,31 @@ Eigen::Isometry3d VehicleFromKittiCamera(const Eigen::Isometry3d& world_T_cam0) 
   return cam_T_vehicle.inverse() * world_T_cam0 * cam_T_vehicle;
 }
 
+Result<Eigen::Isometry3d> ParseKittiCalibration(std::string_view text, std::string_view source_name) {
+  std::istringstream lines{std::string(text)};
+  std::string line;
+  for (int line_number = 1; std::getline(lines, line); ++line_number) {
+    if (!line.starts_with("Tr:")) continue;
+    return ParseTransform(std::string_view(line).substr(3), std::string(source_name) + ": line " + std::to_string(line_number));
+  }
+  return MakeError(std::string(source_name) + ": no Tr: line (cam0_T_velo)");
+}
+
+Result<Eigen::Isometry3d> ReadKittiCalibration(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  if (!file) return MakeError(path.string() + ": cannot open");
+  std::stringstream text;
+  text << file.rdbuf();
+  return ParseKittiCalibration(text.str(), path.string());
+}
+
+std::vector<Eigen::Isometry3d> VelodyneFromKittiCamera(const std::vector<Eigen::Isometry3d>& world_T_cam0,
+                                                       const Eigen::Isometry3d& cam0_T_velo) {
+  std::vector<Eigen::Isometry3d> world_T_velo;
+  if (world_T_cam0.empty()) return world_T_velo;
+  const Eigen::Isometry3d first_velo_T_world = cam0_T_velo.inverse() * world_T_cam0.front().inverse();
+  for (const Eigen::Isometry3d& pose : world_T_cam0) world_T_velo.push_back(first_velo_T_world * pose * cam0_T_velo);
+  return world_T_velo;
+}
+
 }  // namespace flat2d::hal::trajectory

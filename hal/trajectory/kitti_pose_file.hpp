@@ -23,4 +23,14 @@ Result<std::vector<Eigen::Isometry3d>> ParseKittiPoses(std::string_view text, st
 // world_T_vehicle with the world z up, for tools that think in headings.
 Eigen::Isometry3d VehicleFromKittiCamera(const Eigen::Isometry3d& world_T_cam0);
 
+// calib.txt's "Tr:" line: cam0_T_velo, the Velodyne in the left camera's frame. A file
+// without it, or with a bad one, is an error naming the file (and line).
+Result<Eigen::Isometry3d> ReadKittiCalibration(const std::filesystem::path& path);
+Result<Eigen::Isometry3d> ParseKittiCalibration(std::string_view text, std::string_view source_name);
+
+// KITTI's camera poses as the Velodyne's, world_T_velo(i) = Tr^-1 P_0^-1 P_i Tr: the world
+// becomes the first scan's Velodyne frame (x forward, y left, z up).
+std::vector<Eigen::Isometry3d> VelodyneFromKittiCamera(const std::vector<Eigen::Isometry3d>& world_T_cam0,
+                                                       const Eigen::Isometry3d& cam0_T_velo);
+
 }  // namespace flat2d::hal::trajectory

@@ -50,5 +50,34 @@ TEST(KittiPoseFile, ABadLineIsAnErrorNamingIt) {
   EXPECT_FALSE(ReadKittiPoses("/nonexistent/poses.txt").ok());
 }
 
+TEST(KittiCalibration, TrIsTheVelodyneInTheCameraFrame) {
+  const auto tr = ParseKittiCalibration("P0: 1 0 0 0 0 1 0 0 0 0 1 0\nTr: 0 -1 0 -0.01 0 0 -1 -0.05 1 0 0 -0.29\n", "calib.txt");
+  ASSERT_TRUE(tr.ok()) << tr.error().message;
+  // The Velodyne's forward axis (x) is the camera's z, its up (z) the camera's -y.
+  EXPECT_TRUE((tr->linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitZ()));
+  EXPECT_TRUE((tr->linear() * Eigen::Vector3d::UnitZ()).isApprox(-Eigen::Vector3d::UnitY()));
+  EXPECT_EQ(ParseKittiCalibration("P0: 1 0 0 0 0 1 0 0 0 0 1 0\n", "calib.txt").error().message,
+            "calib.txt: no Tr: line (cam0_T_velo)");
+  const auto bad = ParseKittiCalibration("P0: 1\nTr: 2 0 0 0 0 1 0 0 0 0 1 0\n", "calib.txt");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("calib.txt: line 2"), std::string::npos) << bad.error().message;
+}
+
+TEST(KittiCalibration, VelodynePosesOfSequence00DriveForwardOnTheGround) {
+  FLAT2D_REQUIRE_DATA(folder, "lidar3d/kitti_odometry_00_frames_000000-000015");
+  const auto poses = ReadKittiPoses(folder / "poses.txt");
+  const auto tr = ReadKittiCalibration(folder / "calib.txt");
+  ASSERT_TRUE(poses.ok() && tr.ok());
+  const std::vector<Eigen::Isometry3d> velo = VelodyneFromKittiCamera(*poses, *tr);
+  ASSERT_EQ(velo.size(), 16u);
+  EXPECT_TRUE(velo.front().isApprox(Eigen::Isometry3d::Identity(), 1e-12));
+  // poses.txt's last line: the camera 12.87 m forward (z), 0.70 m left (-x), 0.42 m up (-y);
+  // the Velodyne, 0.27 m behind it, sees the same within the lever arm's turn.
+  const Eigen::Vector3d end = velo.back().translation();
+  EXPECT_NEAR(end.x(), 12.87, 0.05);
+  EXPECT_NEAR(end.y(), 0.70, 0.05);
+  EXPECT_NEAR(end.z(), 0.42, 0.12);
+}
+
 }  // namespace
 }  // namespace flat2d::hal::trajectory
