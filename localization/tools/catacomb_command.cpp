@@ -26,8 +26,8 @@
 namespace flat2d::localization::tools {
 
 const char* const kCatacombUsage = R"(
-build --mode catacomb DRIVE --out DIR: local-map 3D SLAM of a Velodyne capture (thesis
-6.3). Each revolution is tracked by NICP against the merged model of the current local map
+build --mode catacomb DRIVE --out DIR: local-map 3D SLAM of a Velodyne capture or a KITTI
+sequence directory (thesis 6.3). Each revolution is tracked by NICP against the merged model of the current local map
 (as build --mode nicp DRIVE); every 5 m, or where a registration fails, the map is closed
 and written and a new one begins. Loop closures between local maps are proposed by
 distance and by trajectory shape, validated by NICP between the two maps (KD-tree, alpha =
@@ -39,7 +39,9 @@ distance and by trajectory shape, validated by NICP between the two maps (KD-tre
   DIR/map.ply            the local maps' points and normals at their optimized poses
   DIR/closures.txt       every candidate: maps, source, verdict, inliers, chi2, DCS scale
   DIR/local_maps/        map_NNNN.ply (points and normals, map frame), map_NNNN.tum
-  DIR/map.f2m, map.png   the 2D prior map gridded at the optimized poses
+  DIR/truth.tum          a KITTI sequence with poses.txt and calib.txt: its truth, world_T_vehicle
+                         per scan from the first scan's vehicle frame (also the --truth below)
+  DIR/map.f2m, map.png   the 2D prior map gridded at the optimized poses (captures only)
 Options of build --mode nicp DRIVE: --can LOG --dbc DBC --odometry CONFIG, --config FILE,
 --anchor FILE.tum, --method M, --iterations N, --max-frames N, --no-deskew, --planar,
 --ground-clearance M, --ground-range M, --no-map, --json. Also:
@@ -57,8 +59,8 @@ Options of build --mode nicp DRIVE: --can LOG --dbc DBC --odometry CONFIG, --con
   --break-chain MAP       move the tracked poses from local map MAP on by 1 m sideways and 5 deg
                           of yaw, as a failed registration with a bad guess would (the tie
                           into MAP gets the odometry's sigma): what loop closing must repair
-  --truth FILE.tum        the drive's 3D truth (flat2d-sim's truth.tum): the JSON adds the
-                          closures' precision and recall against it
+  --truth FILE.tum        the drive's 3D truth (flat2d-sim's truth.tum; a KITTI sequence's own
+                          by default): the JSON adds the closures' precision and recall against it
 The JSON has build --mode nicp DRIVE's tracking keys (frames, failures, frame_ms_p50,
 frame_ms_p95, registration_ms_p50, sensor, tracked_distance_m; with --anchor the drift
 keys of the optimized trajectory) and local_maps, tracking_failures_cut, candidates,
@@ -255,6 +257,7 @@ std::pair<std::size_t, double> WriteOutputs(const Args& a, const CatacombResult&
   WriteTumOrFail(r.trajectory, out / "trajectory.tum");
   WriteTumOrFail(r.drive.trajectory, out / "tracking.tum");
   WriteTumOrFail(r.drive.odometry, out / "odometry.tum");
+  WriteTumOrFail(r.drive.truth, out / "truth.tum");
   WriteClosures(r, truth, out / "closures.txt");
   WriteMapCloud(a, r);
   if (!a.options.drive.build_map) return {0, 0.0};
@@ -359,6 +362,7 @@ int CatacombCommand(int argc, char** argv) {
   auto built = BuildCatacomb(a.options);
   if (!built.ok()) Fail(2, built.error().message);
   const CatacombResult& r = *built;
+  if (!truth && !r.drive.truth.empty()) truth = r.drive.truth;  // a KITTI sequence's poses.txt
   std::optional<ClosureTruth> judged;
   if (truth) judged = JudgeClosures(a, r, *truth);
   const auto map = WriteOutputs(a, r, judged);

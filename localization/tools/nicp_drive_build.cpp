@@ -5,7 +5,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "hal/cloud/kitti_bin_file.hpp"
+#include "hal/cloud/kitti_sequence.hpp"
 #include "hal/net/datagram_source.hpp"
+#include "hal/trajectory/kitti_pose_file.hpp"
 #include "localization/registration/model_tracker.hpp"
 #include "localization/registration/rigid_transform.hpp"
 #include "localization/tools/grid_run.hpp"
@@ -29,12 +32,36 @@ class RevolutionTracker {
   void Add(const hal::velodyne::Revolution& revolution, hal::velodyne::Model model) {
     const TimeNs stamp = revolution.start_ns();
     const Clock::time_point load_start = Clock::now();
-    hal::cloud::PointCloud cloud = RevolutionCloud(revolution, Deskewing(stamp));
+    Add(RevolutionCloud(revolution, Deskewing(stamp)), stamp, maps::range3d::SensorModelOf(model), load_start);
+  }
+
+  // A KITTI scan, taken as it is stored (KITTI's odometry scans are not deskewed: at 10 Hz
+  // and 8 m/s the last points are 0.8 m behind the first).
+  void Add(hal::cloud::PointCloud scan, TimeNs stamp, const Clock::time_point& load_start) {
+    Add(std::move(scan), stamp, maps::range3d::SensorModel::kKitti64, load_start);
+  }
+
+  // Hands the last local map to the caller, if any is open.
+  void Finish() {
+    if (model_tracker_ && options_.local_map_distance_m > 0.0 && result_.frames > map_first_) {
+      CloseLocalMap(result_.frames - 1, false);
+    }
+  }
+
+ private:
+  struct Registration {
+    bool ok = false;  // a failure, or a result that is not finite (nothing downstream survives a NaN)
+    Eigen::Isometry3d world_T_sensor = Eigen::Isometry3d::Identity();
+    double ms = 0.0;  // the registration alone
+  };
+
+  // One revolution's cloud in the sensor frame at `stamp`, loaded since load_start.
+  void Add(hal::cloud::PointCloud cloud, TimeNs stamp, maps::range3d::SensorModel sensor, const Clock::time_point& load_start) {
     if (options_.ground_clearance_m >= 0.0) RemoveGround(cloud);
     const double load_ms = MillisecondsSince(load_start);
     const Clock::time_point frame_start = Clock::now();
     registration::SnicpFrame frame;  // one level: the model tracker's input, kept as it is
-    frame.levels.push_back(maps::range3d::FrameFromCloud(cloud, maps::range3d::SensorModelOf(model), options_.frames));
+    frame.levels.push_back(maps::range3d::FrameFromCloud(cloud, sensor, options_.frames));
     const maps::range3d::RangeFrame& current = frame.levels.front();
     if (result_.frames == 0) {
       Start(stamp);
@@ -59,20 +86,6 @@ class RevolutionTracker {
     }
     previous_ns_ = stamp;
   }
-
-  // Hands the last local map to the caller, if any is open.
-  void Finish() {
-    if (model_tracker_ && options_.local_map_distance_m > 0.0 && result_.frames > map_first_) {
-      CloseLocalMap(result_.frames - 1, false);
-    }
-  }
-
- private:
-  struct Registration {
-    bool ok = false;  // a failure, or a result that is not finite (nothing downstream survives a NaN)
-    Eigen::Isometry3d world_T_sensor = Eigen::Isometry3d::Identity();
-    double ms = 0.0;  // the registration alone
-  };
 
   // The revolution registered to the keyframe, from the guess of its motion since the
   // previous revolution.
@@ -262,20 +275,10 @@ Result<std::optional<maps::InterpolatedPoses>> OpenOdometry(const NicpDriveOptio
   return std::optional<maps::InterpolatedPoses>(std::move(*poses));
 }
 
-}  // namespace
-
-Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options) {
-  if (options.can_log.has_value() != options.dbc.has_value() || options.dbc.has_value() != options.odometry_config.has_value()) {
-    return MakeError("CAN odometry needs a CAN log, a DBC and an odometry configuration together");
-  }
-  if (Status valid = maps::ValidateStructureGridOptions(options.grid); !valid.ok()) return valid.error();
-  auto odometry = OpenOdometry(options);
-  if (!odometry.ok()) return odometry.error();
+// The capture's complete revolutions through the tracker, then the map gridded at the poses.
+Status TrackCapture(const NicpDriveOptions& options, RevolutionTracker& tracker, NicpDriveResult& result) {
   auto source = hal::net::OpenCapture(options.capture);
   if (!source.ok()) return source.error();
-
-  NicpDriveResult result;
-  RevolutionTracker tracker(options, *odometry ? &**odometry : nullptr, result);
   hal::velodyne::VelodyneStream* stream = nullptr;
   auto on_revolution = [&](const hal::velodyne::Revolution& revolution) {
     if (!revolution.complete || (options.max_revolutions > 0 && result.frames >= options.max_revolutions)) return;
@@ -288,12 +291,73 @@ Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options) {
   tracker.Finish();
   if (velodyne.model_error()) return MakeError(options.capture.string() + ": " + velodyne.model_error()->message);
   if (result.frames == 0) return MakeError(options.capture.string() + ": no complete Velodyne revolution");
-  if (!options.build_map) return result;
+  if (!options.build_map) return Status::Ok();
   const Clock::time_point grid_start = Clock::now();
   auto mosaic = GridCaptureAtPoses(options.capture, options.grid, options.stream, options.accumulation, result.trajectory);
   if (!mosaic.ok()) return mosaic.error();
   result.mosaic = std::move(*mosaic);
   result.grid_seconds = MillisecondsSince(grid_start) * 1e-3;
+  return Status::Ok();
+}
+
+// The truth of a KITTI sequence holding poses.txt and calib.txt, as world_T_vehicle at the
+// scans' stamps in the tracking's world (the first scan's vehicle frame, the tracking's start
+// without an anchor); empty without those files.
+Result<std::vector<hal::trajectory::StampedPose>> KittiTruth(const NicpDriveOptions& options,
+                                                             const hal::cloud::KittiSequence& sequence) {
+  const std::filesystem::path poses_path = options.capture / "poses.txt", calib_path = options.capture / "calib.txt";
+  std::vector<hal::trajectory::StampedPose> truth;
+  if (!std::filesystem::exists(poses_path) || !std::filesystem::exists(calib_path)) return truth;
+  auto cameras = hal::trajectory::ReadKittiPoses(poses_path);
+  if (!cameras.ok()) return cameras.error();
+  auto cam0_T_velo = hal::trajectory::ReadKittiCalibration(calib_path);
+  if (!cam0_T_velo.ok()) return cam0_T_velo.error();
+  if (cameras->size() < sequence.scans.size()) {
+    return MakeError(poses_path.string() + ": " + std::to_string(cameras->size()) + " poses for " +
+                     std::to_string(sequence.scans.size()) + " scans");
+  }
+  const std::vector<Eigen::Isometry3d> velodyne = hal::trajectory::VelodyneFromKittiCamera(*cameras, *cam0_T_velo);
+  const Eigen::Isometry3d vehicle_T_sensor = maps::VehicleFromSensor(options.grid.mounting());
+  for (std::size_t i = 0; i < sequence.scans.size(); ++i) {
+    truth.push_back({sequence.stamps[i], vehicle_T_sensor * velodyne[i] * vehicle_T_sensor.inverse()});
+  }
+  return truth;
+}
+
+// A KITTI sequence's scans through the tracker, with its truth when it has one. No map: the
+// structure grid's gridder works on Velodyne fans (laser table, firing order).
+Status TrackKittiSequence(const NicpDriveOptions& options, RevolutionTracker& tracker, NicpDriveResult& result) {
+  auto sequence = hal::cloud::OpenKittiSequence(options.capture);
+  if (!sequence.ok()) return sequence.error();
+  for (std::size_t i = 0; i < sequence->scans.size(); ++i) {
+    if (options.max_revolutions > 0 && result.frames >= options.max_revolutions) break;
+    const Clock::time_point load_start = Clock::now();
+    auto scan = hal::cloud::ReadKittiBin(sequence->scans[i]);
+    if (!scan.ok()) return scan.error();
+    tracker.Add(std::move(*scan), sequence->stamps[i], load_start);
+  }
+  tracker.Finish();
+  auto truth = KittiTruth(options, *sequence);
+  if (!truth.ok()) return truth.error();
+  result.truth = std::move(*truth);
+  result.truth.resize(static_cast<std::size_t>(result.frames));
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<NicpDriveResult> TrackDriveByNicp(const NicpDriveOptions& options) {
+  if (options.can_log.has_value() != options.dbc.has_value() || options.dbc.has_value() != options.odometry_config.has_value()) {
+    return MakeError("CAN odometry needs a CAN log, a DBC and an odometry configuration together");
+  }
+  if (Status valid = maps::ValidateStructureGridOptions(options.grid); !valid.ok()) return valid.error();
+  auto odometry = OpenOdometry(options);
+  if (!odometry.ok()) return odometry.error();
+  NicpDriveResult result;
+  RevolutionTracker tracker(options, *odometry ? &**odometry : nullptr, result);
+  const Status tracked = hal::cloud::IsKittiSequence(options.capture) ? TrackKittiSequence(options, tracker, result)
+                                                                       : TrackCapture(options, tracker, result);
+  if (!tracked.ok()) return tracked.error();
   return result;
 }
 

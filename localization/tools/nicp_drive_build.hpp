@@ -49,6 +49,8 @@ struct TrackedLocalMap {
 };
 
 struct NicpDriveOptions {
+  // A Velodyne capture (.pcap, .pcapng), or a KITTI sequence directory
+  // (hal/cloud/kitti_sequence.hpp): its scans tracked as they are stored, no map gridded.
   std::filesystem::path capture;
   // CAN odometry (all three or none): the registration guess and the deskewing motion.
   std::optional<std::filesystem::path> can_log, dbc, odometry_config;
@@ -113,6 +115,9 @@ struct NicpDriveResult {
   // (empty without a CAN log).
   std::vector<hal::trajectory::StampedPose> odometry;
   std::vector<Eigen::Vector3f> model_points, model_normals;
+  // A KITTI sequence's poses.txt and calib.txt: world_T_vehicle per tracked scan, in the
+  // tracking's world (the first scan's vehicle frame without an anchor). Empty otherwise.
+  std::vector<hal::trajectory::StampedPose> truth;
   std::optional<maps::ClassGrid> mosaic;  // none when not asked for or nothing was gridded
   std::string sensor;                     // the range frames' model ("hdl32e", ...)
   int frames = 0;                         // revolutions tracked

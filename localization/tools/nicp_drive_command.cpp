@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "hal/cloud/kitti_sequence.hpp"
 #include "hal/cloud/ply_writer.hpp"
 #include "localization/evaluation/trajectory_error.hpp"
 #include "localization/evaluation/trajectory_file.hpp"
@@ -20,8 +21,10 @@
 namespace flat2d::localization::tools {
 
 const char* const kNicpDriveUsage = R"(
-build --mode nicp DRIVE --out DIR: a Velodyne capture (.pcap, .pcapng), each complete
-revolution deskewed, made an organized range frame (spherical projection of the identified
+build --mode nicp DRIVE --out DIR: a Velodyne capture (.pcap, .pcapng) or a KITTI sequence
+directory (velodyne/NNNNNN.bin, times.txt; no map for it, and with poses.txt and calib.txt
+DIR/truth.tum, world_T_vehicle at each scan from the first scan's vehicle frame), each complete
+revolution deskewed (KITTI scans as stored), made an organized range frame (spherical projection of the identified
 model, statistics over R = 0.3 m) and tracked by NICP against the merged model of the
 revolutions before (or the last keyframe revolution, a new one every metre or 0.1 rad). Writes DIR/trajectory.tum (world_T_vehicle at each
 revolution's first fan), DIR/model.ply (points and normals of every 10th revolution, every
@@ -71,6 +74,9 @@ constexpr std::string_view kTool = "flat2d-map";
 
 bool IsCapture(std::string_view path) { return path.ends_with(".pcap") || path.ends_with(".pcapng"); }
 
+// A drive to track: a Velodyne capture or a KITTI sequence directory.
+bool IsDrive(std::string_view path) { return IsCapture(path) || hal::cloud::IsKittiSequence(std::filesystem::path(path)); }
+
 }  // namespace
 
 bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a) {
@@ -96,8 +102,12 @@ bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a) {
   else if (arg == "--ground-range") a.options.ground_range_m = maps::cli::ParseNumber(kTool, arg, value());
   else if (arg == "--no-map") a.options.build_map = false;
   else if (arg == "--json") a.json = true;
-  else if (IsCapture(arg) && a.options.capture.empty()) a.options.capture = std::string(arg);
-  else return false;
+  else if (IsDrive(arg) && a.options.capture.empty()) {
+    a.options.capture = std::string(arg);
+    // The structure grid's gridder works on Velodyne fans: a KITTI sequence gets no 2D map;
+    // its scans are stored as measured (KITTI's odometry scans carry no firing times).
+    if (!IsCapture(arg)) a.options.build_map = a.options.deskew = false;
+  } else return false;
   return true;
 }
 
@@ -157,6 +167,9 @@ std::size_t WriteOutputs(const Args& a, NicpDriveResult& r) {
   if (!r.odometry.empty()) {
     if (Status s = hal::trajectory::WriteTum(r.odometry, out / "odometry.tum"); !s.ok()) Fail(2, s.error().message);
   }
+  if (!r.truth.empty()) {
+    if (Status s = hal::trajectory::WriteTum(r.truth, out / "truth.tum"); !s.ok()) Fail(2, s.error().message);
+  }
   if (Status s = hal::cloud::WritePly(out / "model.ply", r.model_points, r.model_normals); !s.ok()) Fail(2, s.error().message);
   if (!a.options.build_map) return 0;
   if (!r.mosaic) Fail(3, a.options.capture.string() + ": no revolution gridded at the tracked poses: nothing to map");
@@ -189,7 +202,7 @@ bool IsDriveBuild(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) {
     const std::string_view before = i > 0 ? argv[i - 1] : "";
     const bool option_value = before.starts_with("--") && std::find(kSwitches.begin(), kSwitches.end(), before) == kSwitches.end();
-    if (IsCapture(argv[i]) && !option_value) return true;
+    if (IsDrive(argv[i]) && !option_value) return true;
   }
   return false;
 }
