@@ -229,20 +229,19 @@ void WriteClosures(const CatacombResult& r, const std::optional<ClosureTruth>& t
   if (!out) Fail(2, path.string() + ": write failed");
 }
 
-// The local maps' stored points at their optimized poses.
+// The local maps' stored points at their optimized poses, streamed map by map: the whole
+// map is never in memory.
 void WriteMapCloud(const Args& a, const CatacombResult& r) {
   const loops::LocalMapStore store(a.options.out / "local_maps", a.options.store);
-  std::vector<Eigen::Vector3f> points, normals;
+  auto writer = hal::cloud::PlyStreamWriter::Open(a.options.out / "map.ply", true);
+  if (!writer.ok()) Fail(2, writer.error().message);
   for (std::size_t i = 0; i < r.maps.size(); ++i) {
     auto stored = store.ReadStored(static_cast<int>(i));
     if (!stored.ok()) Fail(2, stored.error().message);
-    const Eigen::Isometry3f world_T_map = r.graph.nodes[i].estimate.cast<float>();
-    for (std::size_t k = 0; k < stored->points.size(); ++k) {
-      points.push_back(world_T_map * stored->points[k]);
-      normals.push_back(world_T_map.linear() * stored->normals[k]);
-    }
+    const Eigen::Matrix4f world_T_map = r.graph.nodes[i].estimate.matrix().cast<float>();
+    if (Status s = writer->Append(stored->points, stored->normals, world_T_map); !s.ok()) Fail(2, s.error().message);
   }
-  if (Status s = hal::cloud::WritePly(a.options.out / "map.ply", points, normals); !s.ok()) Fail(2, s.error().message);
+  if (Status s = writer->Close(); !s.ok()) Fail(2, s.error().message);
 }
 
 void WriteTumOrFail(const std::vector<hal::trajectory::StampedPose>& poses, const std::filesystem::path& path) {
