@@ -105,6 +105,13 @@ Vec3Packet Transform(const Eigen::Matrix3f& r, const Vec3Packet& p) {
           r(2, 0) * p.x + r(2, 1) * p.y + r(2, 2) * p.z};
 }
 
+// 1 / (d_i d_j) of four pairs, each point's depth in its own cloud's frame (padding: 0).
+Packet InverseDepths(const Chunk& chunk, int k) {
+  const Vec3Packet source = At(chunk.source_point, k), target = At(chunk.target_point, k);
+  const Packet product = (Dot(source, source) * Dot(target, target)).max(Packet::Constant(1e-12F));
+  return chunk.valid.segment<4>(k) * product.rsqrt();
+}
+
 // Four pairs' terms (see Moments) into the running sums.
 template <bool kWithNormals>
 void AddPacket(const Chunk& chunk, int k, const Eigen::Isometry3f& target_T_source, const NicpOptions& options,
@@ -131,9 +138,10 @@ void AddPacket(const Chunk& chunk, int k, const Eigen::Isometry3f& target_T_sour
   }
   const auto bound = static_cast<float>(options.chi2_bound);
   const auto inlier = chi2 < bound;
-  const Packet gamma = valid * inlier.select(Packet::Ones(), bound / chi2);  // Eq. 4.11
+  Packet gamma = valid * inlier.select(Packet::Ones(), bound / chi2);  // Eq. 4.11
   s.inliers += valid * inlier.cast<float>();
   s.chi2 += gamma * chi2;
+  if (options.inverse_depth_weights) gamma *= InverseDepths(chunk, k);  // Eq. 6.7's w_i w_j
 
   // Identity parts: point block weighted gamma, normal block gamma * normal_weight.
   s.weight += gamma;

@@ -32,6 +32,10 @@ struct NicpOptions {
   double convergence_step = 1e-6;
   // KD-tree mode: nearest neighbours on (p, alpha n) (Eq. 6.10).
   float kdtree_alpha = 1.0F / 3.0F;
+  // Thesis Eq. 6.7: each pair's terms scaled by w_i w_j, w = 1/d the point's depth in its
+  // own sensor frame (Eq. 6.4's weight: far points are noisier). Projective mode only (a
+  // KD-tree's target is a map, not a view). chi2 and the inlier count stay unweighted.
+  bool inverse_depth_weights = false;
 };
 
 }  // namespace flat2d::localization::registration

@@ -43,9 +43,15 @@ distance and by trajectory shape, validated by NICP between the two maps (KD-tre
                          per scan from the first scan's vehicle frame (also the --truth below)
   DIR/map.f2m, map.png   the 2D prior map gridded at the optimized poses (captures only)
 Options of build --mode nicp DRIVE: --can LOG --dbc DBC --odometry CONFIG, --config FILE,
---anchor FILE.tum, --method M, --iterations N, --max-frames N, --no-deskew, --planar,
+--anchor FILE.tum, --method M, --iterations N, --max-frames N, --no-deskew,
+--inverse-depth-weights, --planar,
 --ground-clearance M, --ground-range M, --no-map, --json. Also:
   --local-map-distance M  a new local map after M metres of travel (default 5)
+  --local-map-angle RAD   ... or once the sensor has turned RAD from the map's first
+                          revolution (default 0: no such cut)
+  --local-map-overlap S   ... or when a revolution's NICP inliers are less than share S of its
+                          points with normals (default 0: none; below 0.3 the registration
+                          fails, which always cuts)
   --continuous-tracking   track against one merged model across the cuts (each local map
                           merges its revolutions into its own model besides) instead of
                           starting each map's tracking afresh (thesis 6.3)
@@ -63,8 +69,9 @@ Options of build --mode nicp DRIVE: --can LOG --dbc DBC --odometry CONFIG, --con
                           by default): the JSON adds the closures' precision and recall against it
 The JSON has build --mode nicp DRIVE's tracking keys (frames, failures, frame_ms_p50,
 frame_ms_p95, registration_ms_p50, sensor, tracked_distance_m; with --anchor the drift
-keys of the optimized trajectory) and local_maps, tracking_failures_cut, candidates,
-candidates_distance, candidates_shape, candidates_injected, validated, accepted,
+keys of the optimized trajectory) and local_maps, tracking_failures_cut, cuts_distance,
+cuts_angle, cuts_overlap, cuts_failure (why each local map but the last was closed),
+candidates, candidates_distance, candidates_shape, candidates_injected, validated, accepted,
 closures_kept, injected_accepted, injected_kept, edits_added, edits_removed,
 candidate_seconds, validation_ms_p50, solve_seconds, solve_rounds, graph_cost_initial,
 graph_cost_final, tracking_seconds, grid_seconds; with --truth: revisits,
@@ -93,6 +100,8 @@ Args ParseArgs(int argc, char** argv) {
     auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     auto number = [&] { return maps::cli::ParseNumber(kTool, arg, value()); };
     if (arg == "--local-map-distance") a.drive.options.local_map_distance_m = number();
+    else if (arg == "--local-map-angle") a.drive.options.local_map_angle_rad = number();
+    else if (arg == "--local-map-overlap") a.drive.options.local_map_min_overlap = number();
     else if (arg == "--continuous-tracking") a.drive.options.continuous_tracking = true;
     else if (arg == "--no-loops") a.options.distance_candidates = a.options.shape_candidates = false;
     else if (arg == "--no-distance-candidates") a.options.distance_candidates = false;
@@ -105,6 +114,9 @@ Args ParseArgs(int argc, char** argv) {
   }
   CheckNicpDriveArgs(a.drive, "catacomb", kCatacombUsage);
   if (a.drive.options.local_map_distance_m < 0.0) Fail(1, "build --mode catacomb: --local-map-distance is >= 0");
+  if (a.drive.options.local_map_angle_rad < 0.0) Fail(1, "build --mode catacomb: --local-map-angle is >= 0");
+  const double overlap = a.drive.options.local_map_min_overlap;
+  if (!(overlap >= 0.0 && overlap <= 1.0)) Fail(1, "build --mode catacomb: --local-map-overlap is a share in [0, 1]");
   if (a.options.injected_false_share < 0.0 || a.options.injected_false_share >= 1.0) {
     Fail(1, "build --mode catacomb: --inject-false is a share in [0, 1)");
   }
@@ -327,6 +339,9 @@ void PrintJson(const Args& a, const CatacombResult& r, const Counts& n, std::pai
               evaluation::PercentilesOf(r.validation_ms).p50, r.solve.seconds, r.solve.rounds, graph::G2oChi2(initial),
               graph::G2oChi2(r.graph), r.tracking_seconds, map.second, map.first);
   std::printf(", \"tracked_distance_m\": %.3f", PathLength(r.trajectory));
+  const LocalMapCuts& cuts = r.drive.local_map_cuts;
+  std::printf(", \"cuts_distance\": %d, \"cuts_angle\": %d, \"cuts_overlap\": %d, \"cuts_failure\": %d", cuts.distance,
+              cuts.angle, cuts.overlap, cuts.failure);
   if (!a.drive.options.anchor.empty()) {
     const Drift d = DriftAgainst(a.drive.options.anchor, r.trajectory);
     std::printf(", \"distance_m\": %.3f, \"drift_percent\": %.4f, \"end_error_m\": %.4f, \"max_error_m\": %.4f", d.distance_m,

@@ -53,6 +53,7 @@ class RevolutionTracker {
     bool ok = false;  // a failure, or a result that is not finite (nothing downstream survives a NaN)
     Eigen::Isometry3d world_T_sensor = Eigen::Isometry3d::Identity();
     double ms = 0.0;  // the registration alone
+    double overlap = 1.0;  // against the model: the share of the revolution's points with normals that are inliers
   };
 
   // One revolution's cloud in the sensor frame at `stamp`, loaded since load_start.
@@ -76,7 +77,7 @@ class RevolutionTracker {
       result_.load_ms.push_back(load_ms);
       MoveTo(stamp, r.ok ? r.world_T_sensor : world_T_sensor_ * guess, r.ok);
       if (r.ok && local_model_) MergeIntoLocalModel(current);
-      if (CutsLocalMap(r.ok)) StartLocalMap(frame, r.ok);
+      if (CutsLocalMap(r)) StartLocalMap(frame, r.ok);
     }
     Record(stamp, current);
     result_.sensor = std::string(maps::range3d::SensorModelName(current.sensor));
@@ -101,7 +102,11 @@ class RevolutionTracker {
   // merged into it.
   Registration AgainstModel(const registration::SnicpFrame& frame, const Eigen::Isometry3d& guess) {
     const registration::TrackedFrame tracked = model_tracker_->Track(frame, world_T_sensor_, guess);
-    return {tracked.merged && tracked.model_T_camera.matrix().allFinite(), tracked.model_T_camera, tracked.register_ms};
+    const maps::range3d::SurfelCloud& cloud = frame.levels.front().cloud;
+    std::size_t with_normals = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i) with_normals += cloud.has_normal(i) ? 1 : 0;
+    return {tracked.merged && tracked.model_T_camera.matrix().allFinite(), tracked.model_T_camera, tracked.register_ms,
+            with_normals > 0 ? tracked.result.inliers / static_cast<double>(with_normals) : 0.0};
   }
 
   // Moves world_T_sensor_ to the revolution's pose (the guess's where registration failed).
@@ -113,11 +118,21 @@ class RevolutionTracker {
     world_T_sensor_ = options_.planar ? OnThePlane(rigid) : rigid;
   }
 
-  // Whether the revolution just moved to (index result_.frames) ends the current local map.
-  bool CutsLocalMap(bool registered) {
+  // Whether the revolution just moved to (index result_.frames) ends the current local map,
+  // counting the reason: a failed registration, the distance travelled in the map, the
+  // rotation from its first revolution, or too small an overlap with the tracked model.
+  bool CutsLocalMap(const Registration& r) {
     if (!options_.frame_to_model || options_.local_map_distance_m <= 0.0) return false;
     map_path_m_ += motion_.translation().norm();
-    return !registered || map_path_m_ >= options_.local_map_distance_m;
+    LocalMapCuts& cuts = result_.local_map_cuts;
+    const double rotation = Eigen::AngleAxisd((world_T_map_.inverse() * world_T_sensor_).linear()).angle();
+    int* reason = nullptr;
+    if (!r.ok) reason = &cuts.failure;
+    else if (map_path_m_ >= options_.local_map_distance_m) reason = &cuts.distance;
+    else if (options_.local_map_angle_rad > 0.0 && rotation >= options_.local_map_angle_rad) reason = &cuts.angle;
+    else if (r.overlap < options_.local_map_min_overlap) reason = &cuts.overlap;
+    if (reason != nullptr) ++*reason;
+    return reason != nullptr;
   }
 
   // Closes the current map (with the current revolution when it was merged into it) and

@@ -88,6 +88,12 @@ struct NicpDriveOptions {
   // far since the model began, or when a registration fails, the model goes to on_local_map
   // and a new one starts from the current revolution. The last one goes at the drive's end.
   double local_map_distance_m = 0.0;
+  // Our cuts besides the thesis' two (local_map_distance_m above 0 only; 0: none): once the
+  // sensor has turned this far from the map's first revolution, or when a revolution's
+  // inliers are less than this share of its points with normals (the view has moved off the
+  // model: with continuous tracking, the model across the cuts).
+  double local_map_angle_rad = 0.0;
+  double local_map_min_overlap = 0.0;
   std::function<void(const TrackedLocalMap&)> on_local_map;
   // False (thesis 6.3): each local map is tracked against its own model, started afresh at
   // the cut. True: tracking runs on against the one merged model across cuts and each
@@ -108,6 +114,11 @@ struct NicpDriveOptions {
   int model_stride = 16;
 };
 
+// Why local maps were closed (the last, at the drive's end, is not counted).
+struct LocalMapCuts {
+  int distance = 0, angle = 0, overlap = 0, failure = 0;
+};
+
 struct NicpDriveResult {
   // world_T_vehicle at each tracked revolution's first fan.
   std::vector<hal::trajectory::StampedPose> trajectory;
@@ -123,6 +134,7 @@ struct NicpDriveResult {
   int frames = 0;                         // revolutions tracked
   int failures = 0;                       // registrations that failed (the guess kept)
   int guesses_without_odometry = 0;       // pairs outside the CAN log's time (constant velocity)
+  LocalMapCuts local_map_cuts;
   std::vector<double> frame_ms;         // per registered revolution: its statistics + the registration
   std::vector<double> registration_ms;  // the registration alone
   std::vector<double> load_ms;          // the revolution's deskewed cloud

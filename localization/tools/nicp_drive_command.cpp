@@ -50,6 +50,8 @@ first pose).
                         the ones before and merge it (thesis 5.1.4; the latest 1 M points
                         kept); keyframe: register it to the last keyframe revolution
   --no-deskew           take each revolution as measured from one place
+  --inverse-depth-weights
+                        scale each NICP pair by w_i w_j, w = 1/range (thesis Eq. 6.4, 6.7)
   --planar              keep the vehicle on the ground plane after every registration
                         (height, roll and pitch zero): flat ground
   --ground-clearance M  leave out points less than M above the vehicle's ground plane
@@ -97,6 +99,7 @@ bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a) {
   } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
   else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
   else if (arg == "--no-deskew") a.options.deskew = false;
+  else if (arg == "--inverse-depth-weights") a.options.nicp.inverse_depth_weights = true;
   else if (arg == "--planar") a.options.planar = true;
   else if (arg == "--ground-clearance") a.options.ground_clearance_m = maps::cli::ParseNumber(kTool, arg, value());
   else if (arg == "--ground-range") a.options.ground_range_m = maps::cli::ParseNumber(kTool, arg, value());
@@ -198,7 +201,8 @@ double PathLength(const std::vector<hal::trajectory::StampedPose>& trajectory) {
 
 bool IsDriveBuild(int argc, char** argv) {
   // The flags of either mode that take no value.
-  constexpr std::array<std::string_view, 5> kSwitches{"--json", "--no-deskew", "--no-map", "--planar", "--identity-guess"};
+  constexpr std::array<std::string_view, 6> kSwitches{"--json", "--no-deskew", "--no-map", "--planar", "--identity-guess",
+                                                      "--inverse-depth-weights"};
   for (int i = 0; i < argc; ++i) {
     const std::string_view before = i > 0 ? argv[i - 1] : "";
     const bool option_value = before.starts_with("--") && std::find(kSwitches.begin(), kSwitches.end(), before) == kSwitches.end();

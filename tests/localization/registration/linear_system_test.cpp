@@ -34,8 +34,12 @@ LinearSystem Reference(const SurfelCloud& target, const SurfelCloud& source, con
     j.bottomRightCorner<3, 3>() = -2.0 * Skew(m);
     const double chi2 = e.dot(omega * e);
     const double gamma = chi2 < options.chi2_bound ? 1.0 : options.chi2_bound / chi2;
-    system.H += gamma * j.transpose() * omega * j;
-    system.b += gamma * j.transpose() * omega * e;
+    // Eq. 6.7: w_i w_j, each point's inverse depth in its own frame; chi2 stays unweighted.
+    const double weight = options.inverse_depth_weights ? 1.0 / (source.points[pair.source].cast<double>().norm() *
+                                                                 target.points[pair.target].cast<double>().norm())
+                                                        : 1.0;
+    system.H += weight * gamma * j.transpose() * omega * j;
+    system.b += weight * gamma * j.transpose() * omega * e;
     system.chi2 += gamma * chi2;
     system.inliers += chi2 < options.chi2_bound ? 1 : 0;
   }
@@ -57,7 +61,8 @@ SurfelCloud RandomCloud(std::mt19937& rng, std::size_t n) {
 TEST(LinearSystem, ClosedFormMatchesTheTermByTermSum) {
   std::mt19937 rng(42);
   std::printf("seed 42\n");
-  for (const ErrorMetric metric : {ErrorMetric::kNicp, ErrorMetric::kPointToPlane}) {
+  for (const auto& [metric, weighted] : {std::pair{ErrorMetric::kNicp, false}, std::pair{ErrorMetric::kPointToPlane, false},
+                                        std::pair{ErrorMetric::kNicp, true}}) {
     const SurfelCloud target = RandomCloud(rng, 400), source = RandomCloud(rng, 400);
     std::vector<Correspondence> pairs;
     for (std::uint32_t i = 0; i < 400; ++i) pairs.push_back({i, (i * 7U) % 400U});
@@ -68,6 +73,7 @@ TEST(LinearSystem, ClosedFormMatchesTheTermByTermSum) {
     options.metric = metric;
     options.normal_weight = 2.5;
     options.chi2_bound = 50.0;  // some pairs winsorized, some not
+    options.inverse_depth_weights = weighted;
     const LinearSystem expected = Reference(target, source, pairs, t, options);
     const LinearSystem actual = BuildLinearSystem(target, source, pairs, t.cast<float>(), options);
     EXPECT_GT(expected.inliers, 20);

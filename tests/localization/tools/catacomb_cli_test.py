@@ -115,6 +115,31 @@ class Catacomb(unittest.TestCase):
         with open(os.path.join(out, "closures.txt")) as f:
             self.assertIn("0 2 edit", f.read())
 
+    def test_cut_options(self):
+        """The rotation and overlap cuts close maps early, and each cut is counted by its reason."""
+        base = ["build", "--mode", "catacomb", self.pcap, *self.can, "--max-frames", "20", "--no-map", "--no-loops",
+                "--json"]
+        plain = run(MAP, *base, "--out", os.path.join(WORK, "cuts_plain"))
+        self.assertEqual(plain.returncode, 0, plain.stderr)
+        p = json.loads(plain.stdout)
+        self.assertEqual((p["cuts_angle"], p["cuts_overlap"]), (0, 0))
+        self.assertEqual(p["cuts_distance"] + p["cuts_failure"], p["local_maps"] - 1)
+        # Every revolution pairs fewer inliers than all its points: each one starts a map.
+        overlap = run(MAP, *base, "--local-map-overlap", "1", "--out", os.path.join(WORK, "cuts_overlap"))
+        self.assertEqual(overlap.returncode, 0, overlap.stderr)
+        o = json.loads(overlap.stdout)
+        self.assertEqual(o["local_maps"], 20)
+        self.assertEqual(o["cuts_overlap"] + o["cuts_distance"] + o["cuts_failure"], 19)
+        self.assertGreater(o["cuts_overlap"], 0)
+        # 0.01 deg of turn (the drive leaves the start on a curve, with the gyro's noise).
+        angle = run(MAP, *base, "--local-map-angle", "0.0002", "--out", os.path.join(WORK, "cuts_angle"))
+        self.assertEqual(angle.returncode, 0, angle.stderr)
+        g = json.loads(angle.stdout)
+        self.assertGreater(g["cuts_angle"], 0)
+        self.assertGreater(g["local_maps"], p["local_maps"])
+        for flag, value in (("--local-map-overlap", "1.5"), ("--local-map-overlap", "-0.1"), ("--local-map-angle", "-1")):
+            self.assertEqual(run(MAP, *base, flag, value, "--out", os.path.join(WORK, "cuts_bad")).returncode, 1, flag)
+
     def test_bad_input(self):
         out = os.path.join(WORK, "bad")
         # A capture that is missing: status 2, naming it.
