@@ -17,7 +17,8 @@
 //      injected (the acceptance test of the validation and the robust kernel).
 //   4. Closure edits from a file (the refiner of 6.3.4, loops/closure_edits.hpp): add, remove.
 //   5. The graph solved with the closures behind dynamic covariance scaling
-//      (loops/robust_closures.hpp).
+//      (loops/robust_closures.hpp), and the ties across failed registrations too: the
+//      odometry's guess there may be what the closures must overrule (thesis Fig. 6.7).
 //   6. Each revolution's pose from its map's optimized pose; the capture gridded again at
 //      those poses into the prior map's mosaic.
 #pragma once
@@ -112,7 +113,10 @@ struct CatacombResult {
   std::vector<int> last_revolution;
   graph::Se3PoseGraph graph;          // optimized
   std::vector<ClosureRecord> closures;  // every candidate validated, in the order tried
-  loops::RobustClosureResult solve;
+  loops::RobustClosureResult solve;  // its scales: the accepted closures', then the failure ties'
+  // Per tie across a failed registration (or the injected break), in driving order: its final
+  // DCS scale (below 0.5: the closures overruled the odometry's guess).
+  std::vector<double> failure_tie_scales;
   std::vector<hal::trajectory::StampedPose> trajectory;  // world_T_vehicle per revolution, optimized
   double candidate_seconds = 0.0;
   std::vector<double> validation_ms;  // per candidate validated (reading both maps included)

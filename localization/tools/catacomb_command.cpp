@@ -71,6 +71,8 @@ The JSON has build --mode nicp DRIVE's tracking keys (frames, failures, frame_ms
 frame_ms_p95, registration_ms_p50, sensor, tracked_distance_m; with --anchor the drift
 keys of the optimized trajectory) and local_maps, tracking_failures_cut, cuts_distance,
 cuts_angle, cuts_overlap, cuts_failure (why each local map but the last was closed),
+failure_ties, failure_ties_overruled (ties across failed registrations, and those the
+closures overruled: DCS scale below 0.5),
 candidates, candidates_distance, candidates_shape, candidates_injected, validated, accepted,
 closures_kept, injected_accepted, injected_kept, edits_added, edits_removed,
 candidate_seconds, validation_ms_p50, solve_seconds, solve_rounds, graph_cost_initial,
@@ -339,6 +341,9 @@ void PrintJson(const Args& a, const CatacombResult& r, const Counts& n, std::pai
               evaluation::PercentilesOf(r.validation_ms).p50, r.solve.seconds, r.solve.rounds, graph::G2oChi2(initial),
               graph::G2oChi2(r.graph), r.tracking_seconds, map.second, map.first);
   std::printf(", \"tracked_distance_m\": %.3f", PathLength(r.trajectory));
+  const auto discounted = std::count_if(r.failure_tie_scales.begin(), r.failure_tie_scales.end(),
+                                        [&](double scale) { return scale < a.options.robust.min_kept_scale; });
+  std::printf(", \"failure_ties\": %zu, \"failure_ties_overruled\": %td", r.failure_tie_scales.size(), discounted);
   const LocalMapCuts& cuts = r.drive.local_map_cuts;
   std::printf(", \"cuts_distance\": %d, \"cuts_angle\": %d, \"cuts_overlap\": %d, \"cuts_failure\": %d", cuts.distance,
               cuts.angle, cuts.overlap, cuts.failure);
