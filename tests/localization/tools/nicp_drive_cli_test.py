@@ -2,11 +2,12 @@
 """flat2d-map build --mode nicp DRIVE as users call it: a short simulated drive tracked by NICP
 revolution to merged model (and to keyframe) with CAN odometry guesses, its files (TUM trajectory, PLY model,
 prior map, preview), its trajectory against the simulator's truth, and exit statuses on bad
-input.
+input; then a KITTI sequence directory (the real KITTI 00 excerpt) tracked the same way.
 
-usage: nicp_drive_cli_test.py FLAT2D_MAP FLAT2D_EVAL FLAT2D_SIM SOURCE_DIR WORK_DIR [quick]
-Needs no shared data (the simulator makes the drive). "quick" (the sanitizer build) tracks
-the first 20 revolutions and checks the files, not the accuracy.
+usage: nicp_drive_cli_test.py FLAT2D_MAP FLAT2D_EVAL FLAT2D_SIM SOURCE_DIR DATA_DIR WORK_DIR [quick]
+The simulated drive needs no shared data; the KITTI test skips without it ($FLAT2D_DATA
+overrides DATA_DIR). "quick" (the sanitizer build) tracks the first 20 revolutions of the
+simulated drive and checks the files, not the accuracy.
 """
 import json
 import os
@@ -14,8 +15,10 @@ import subprocess
 import sys
 import unittest
 
-MAP, EVAL, SIM, SOURCE, WORK = sys.argv[1:6]
-QUICK = len(sys.argv) > 6 and sys.argv[6] == "quick"
+MAP, EVAL, SIM, SOURCE, DATA, WORK = sys.argv[1:7]
+DATA = os.environ.get("FLAT2D_DATA") or DATA
+QUICK = len(sys.argv) > 7 and sys.argv[7] == "quick"
+KITTI = os.path.join(DATA, "lidar3d", "kitti_odometry_00_frames_000000-000015")
 SIM_ODOMETRY = os.path.join(SOURCE, "packaging", "config", "odometry", "flat2d_sim.textproto")
 # The first 8 s of the office mapping drive (VLP-16, seed 3, 7.9 m in a corridor), measured
 # against the merged model ATE 0.020 m, RPE per revolution 0.005 m and 0.048 deg, drift
@@ -143,6 +146,25 @@ class NicpDrive(unittest.TestCase):
         self.assertEqual(run(MAP, "build", "--mode", "nicp", pcap, "--out", out, "--max-frames", "0").returncode, 1)
         self.assertEqual(run(MAP, "build", "--mode", "nicp", pcap, "--out", out, "--method", "x").returncode, 1)
         self.assertEqual(run(MAP, "build", "--mode", "nicp", pcap, "--out", out, "--frobnicate").returncode, 1)
+
+
+class KittiSequence(unittest.TestCase):
+    def test_scans_tracked_with_the_sequence_truth(self):
+        if not os.path.isdir(KITTI):
+            self.skipTest("real data not found: " + KITTI + " (set FLAT2D_DATA to the shared data folder)")
+        out = os.path.join(WORK, "kitti_nicp")
+        result = run(MAP, "build", "--mode", "nicp", KITTI, "--config",
+                     os.path.join(SOURCE, "packaging", "config", "grid", "kitti_hdl64.textproto"), "--out", out, "--json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        s = json.loads(result.stdout)
+        self.assertEqual((s["sensor"], s["frames"], s["failures"]), ("kitti64", 16, 0))
+        self.assertEqual((s["deskew"], s["guess"], s["viewpoints"]), (False, "constant-velocity", 0))
+        self.assertAlmostEqual(s["tracked_distance_m"], 11.67, delta=0.25)  # lidar3d/README.md's ICP steps
+        for name in ("trajectory.tum", "truth.tum"):
+            with open(os.path.join(out, name)) as f:
+                self.assertEqual(len([l for l in f if not l.startswith("#")]), 16, name)
+        self.assertGreater(os.path.getsize(os.path.join(out, "model.ply")), 1000)
+        self.assertFalse(os.path.exists(os.path.join(out, "map.f2m")))
 
 
 if __name__ == "__main__":
