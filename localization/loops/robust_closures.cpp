@@ -43,4 +43,25 @@ RobustClosureResult OptimizeWithRobustClosures(graph::Se3PoseGraph& graph, std::
   return result;
 }
 
+std::vector<double> JudgeWeakTies(graph::Se3PoseGraph& graph, std::span<const std::size_t> ties,
+                                  std::span<const std::size_t> closures, const std::vector<bool>& closure_kept,
+                                  const RobustClosureOptions& options, RobustClosureResult& totals) {
+  if (std::find(closure_kept.begin(), closure_kept.end(), true) == closure_kept.end()) {
+    return std::vector<double>(ties.size(), 1.0);
+  }
+  std::vector<std::pair<std::size_t, graph::Matrix6d>> dropped;
+  for (std::size_t c = 0; c < closures.size(); ++c) {
+    if (closure_kept[c]) continue;
+    graph::Matrix6d& information = graph.betweens[closures[c]].information;
+    dropped.emplace_back(closures[c], information);
+    information.setZero();
+  }
+  const RobustClosureResult judged = OptimizeWithRobustClosures(graph, ties, options);
+  for (const auto& [factor, information] : dropped) graph.betweens[factor].information = information;
+  totals.rounds += judged.rounds;
+  totals.iterations += judged.iterations;
+  totals.seconds += judged.seconds;
+  return judged.scales;
+}
+
 }  // namespace flat2d::localization::loops

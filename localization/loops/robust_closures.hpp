@@ -44,4 +44,16 @@ struct RobustClosureResult {
 RobustClosureResult OptimizeWithRobustClosures(graph::Se3PoseGraph& graph, std::span<const std::size_t> closures,
                                                const RobustClosureOptions& options);
 
+// After OptimizeWithRobustClosures: the chain's weak ties (the odometry's guesses across
+// failed registrations, thesis Fig. 6.7) behind the same kernel against the kept closures,
+// so that consistent closures can overrule a wrong guess. `closures` and `closure_kept` as
+// OptimizeWithRobustClosures had and gave them; the dropped ones are left out of this solve
+// (their information is restored after it). Judged in the same solve as the closures, a
+// false closure could tear the chain open at a weak tie instead of being dropped. Without a
+// kept closure the ties are not judged (scales 1, no solve). Adds its rounds, iterations
+// and time to `totals`; returns the ties' scales.
+std::vector<double> JudgeWeakTies(graph::Se3PoseGraph& graph, std::span<const std::size_t> ties,
+                                  std::span<const std::size_t> closures, const std::vector<bool>& closure_kept,
+                                  const RobustClosureOptions& options, RobustClosureResult& totals);
+
 }  // namespace flat2d::localization::loops

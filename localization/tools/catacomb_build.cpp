@@ -280,22 +280,25 @@ class CatacombBuilder {
       factors.push_back(result_.graph.betweens.size());
       result_.graph.betweens.push_back(factor);
     }
-    // A tie across a failed registration is the odometry's guess, the chain's weakest link
-    // and possibly a wrong one (Fig. 6.7): it goes behind the kernel too, after the closures.
-    std::vector<std::size_t> failure_ties;
-    for (std::size_t i = 0; i + 1 < tracked_.size(); ++i) {
-      if (tracked_[i].ends_in_failure) failure_ties.push_back(i);  // the chain's factor i joins maps i and i + 1
-    }
-    factors.insert(factors.end(), failure_ties.begin(), failure_ties.end());
     result_.solve = loops::OptimizeWithRobustClosures(result_.graph, factors, options_.robust);
     for (std::size_t i = 0; i < accepted_.size(); ++i) {
       ClosureRecord& r = result_.closures[accepted_[i]];
       r.scale = result_.solve.scales[i];
       r.kept = result_.solve.kept[i];
     }
-    for (std::size_t i = 0; i < failure_ties.size(); ++i) {
-      result_.failure_tie_scales.push_back(result_.solve.scales[accepted_.size() + i]);
+    JudgeFailureTies();
+  }
+
+  // Step 5, second half: the ties across failed registrations (or the injected break)
+  // judged against the kept closures (loops::JudgeWeakTies).
+  void JudgeFailureTies() {
+    std::vector<std::size_t> ties, closures;
+    for (std::size_t i = 0; i + 1 < tracked_.size(); ++i) {
+      if (tracked_[i].ends_in_failure) ties.push_back(i);  // the chain's factor i joins maps i and i + 1
     }
+    for (const std::size_t record : accepted_) closures.push_back(*result_.closures[record].factor);
+    result_.failure_tie_scales =
+        loops::JudgeWeakTies(result_.graph, ties, closures, result_.solve.kept, options_.robust, result_.solve);
   }
 
   // Step 6: each revolution moved with the map that holds it.

@@ -17,8 +17,9 @@
 //      injected (the acceptance test of the validation and the robust kernel).
 //   4. Closure edits from a file (the refiner of 6.3.4, loops/closure_edits.hpp): add, remove.
 //   5. The graph solved with the closures behind dynamic covariance scaling
-//      (loops/robust_closures.hpp), and the ties across failed registrations too: the
-//      odometry's guess there may be what the closures must overrule (thesis Fig. 6.7).
+//      (loops/robust_closures.hpp); then the ties across failed registrations behind the
+//      kernel against the kept closures: the odometry's guess there may be what the
+//      closures must overrule (thesis Fig. 6.7).
 //   6. Each revolution's pose from its map's optimized pose; the capture gridded again at
 //      those poses into the prior map's mosaic.
 #pragma once
@@ -113,9 +114,10 @@ struct CatacombResult {
   std::vector<int> last_revolution;
   graph::Se3PoseGraph graph;          // optimized
   std::vector<ClosureRecord> closures;  // every candidate validated, in the order tried
-  loops::RobustClosureResult solve;  // its scales: the accepted closures', then the failure ties'
+  loops::RobustClosureResult solve;  // its scales: the accepted closures' (rounds and time include the ties')
   // Per tie across a failed registration (or the injected break), in driving order: its final
-  // DCS scale (below 0.5: the closures overruled the odometry's guess).
+  // DCS scale against the kept closures (below 0.5: they overruled the odometry's guess; 1
+  // when no closure was kept).
   std::vector<double> failure_tie_scales;
   std::vector<hal::trajectory::StampedPose> trajectory;  // world_T_vehicle per revolution, optimized
   double candidate_seconds = 0.0;

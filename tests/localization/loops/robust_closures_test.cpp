@@ -162,11 +162,11 @@ TEST(RobustClosures, WithoutTheKernelFalseClosuresBendTheMap) {
 // 6.7): one tie, the odometry's guess across a failed registration (0.2 m, 0.02 rad), is
 // 1 m and 5 deg wrong, and the only closures are three at one place of the second lap (the
 // office's revisit: maps 40-41 seen again as 81-82). Held at full weight, the tie keeps part
-// of its error and bends the lap; behind the kernel beside the closures it is discounted
-// and the closures pull the step across the break towards the truth's. (The chain is
-// unbiased here: a discounted tie takes more of its loop's misclosure, the chain's drift
-// with the break. On the simulated office the tie is overruled: docs/benchmarks.md.)
-TEST(RobustClosures, ABrokenTieBehindTheKernelGivesWayToTheClosures) {
+// of its error and bends the lap; judged against the kept closures (JudgeWeakTies) it gives
+// way and the step across the break comes near the truth's. (The chain is unbiased here: a
+// discounted tie takes more of its loop's misclosure, the chain's drift with the break. On
+// the simulated office the tie is overruled: docs/benchmarks.md.)
+TEST(RobustClosures, ABrokenWeakTieGivesWayToTheKeptClosures) {
   constexpr std::size_t kBreak = 40;  // the tie from map 40 to 41, inside the loop the closures close
   const std::vector<int> closures_at{83, 84, 85};  // maps 20-22 seen again
   auto broken = [&] {
@@ -183,12 +183,16 @@ TEST(RobustClosures, ABrokenTieBehindTheKernelGivesWayToTheClosures) {
   };
   Scenario kept = broken();
   (void)OptimizeWithRobustClosures(kept.graph, kept.true_closures, RobustClosureOptions{});
-  Scenario robust = broken();
-  std::vector<std::size_t> factors = robust.true_closures;
-  factors.push_back(kBreak);
-  const RobustClosureResult r = OptimizeWithRobustClosures(robust.graph, factors, RobustClosureOptions{});
-  EXPECT_LT(r.scales.back(), 0.8);  // the tie, discounted
-  for (std::size_t c = 0; c + 1 < factors.size(); ++c) EXPECT_TRUE(r.kept[c]) << c;
+  Scenario judged = broken();
+  RobustClosureResult r = OptimizeWithRobustClosures(judged.graph, judged.true_closures, RobustClosureOptions{});
+  for (std::size_t c = 0; c < judged.true_closures.size(); ++c) EXPECT_TRUE(r.kept[c]) << c;
+  const std::vector<std::size_t> ties{kBreak};
+  const int rounds = r.rounds;
+  const std::vector<double> tie_scales =
+      JudgeWeakTies(judged.graph, ties, judged.true_closures, r.kept, RobustClosureOptions{}, r);
+  ASSERT_EQ(tie_scales.size(), 1u);
+  EXPECT_LT(tie_scales[0], 0.8);  // discounted
+  EXPECT_GT(r.rounds, rounds);
   // The step across the break against the truth's: what the repair is about.
   auto step_error_deg = [&](const Scenario& s) {
     const auto& nodes = s.graph.nodes;
@@ -196,12 +200,51 @@ TEST(RobustClosures, ABrokenTieBehindTheKernelGivesWayToTheClosures) {
                                     (nodes[kBreak].estimate.inverse() * nodes[kBreak + 1].estimate);
     return Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI;
   };
-  const double kept_rms = RmsError(kept.graph, kept.truth), robust_rms = RmsError(robust.graph, robust.truth);
-  std::printf("step across the break: %.2f deg kept at full weight, %.2f deg behind the kernel (scale %.2f); "
-              "RMS %.3f m and %.3f m\n", step_error_deg(kept), step_error_deg(robust), r.scales.back(), kept_rms, robust_rms);
+  const double kept_rms = RmsError(kept.graph, kept.truth), judged_rms = RmsError(judged.graph, judged.truth);
+  std::printf("step across the break: %.2f deg at full weight, %.2f deg judged (scale %.2f); RMS %.3f m and %.3f m\n",
+              step_error_deg(kept), step_error_deg(judged), tie_scales[0], kept_rms, judged_rms);
   EXPECT_GT(step_error_deg(kept), 1.0);
-  EXPECT_LT(step_error_deg(robust), 0.6 * step_error_deg(kept));
-  EXPECT_LT(robust_rms, 0.9 * kept_rms);
+  EXPECT_LT(step_error_deg(judged), 0.6 * step_error_deg(kept));
+  EXPECT_LT(judged_rms, 0.9 * kept_rms);
+}
+
+// The campus case: a correct weak tie and 20 % false closures. The false ones are dropped
+// first; judged against the kept ones the tie keeps its weight, and the solution is the
+// clean one. (Why first: judged in one solve with the closures, the simulated campus with
+// 20 % injected false candidates tore open at 6 of its 9 failure ties and ended 144 m off,
+// docs/benchmarks.md. Here the laps' dense true closures would hold either way.)
+TEST(RobustClosures, FalseClosuresCannotOverruleACorrectWeakTie) {
+  for (std::uint32_t seed = 1; seed <= 5; ++seed) {
+    constexpr std::size_t kWeak = 70;
+    Scenario clean = MakeScenario(0, seed);
+    clean.graph.betweens[kWeak].information = Information(0.2, 0.02);
+    (void)OptimizeWithRobustClosures(clean.graph, clean.true_closures, RobustClosureOptions{});
+    Scenario s = MakeScenario(static_cast<int>(clean.true_closures.size()) / 4, seed);
+    s.graph.betweens[kWeak].information = Information(0.2, 0.02);
+    const std::vector<std::size_t> closures = All(s);
+    RobustClosureResult r = OptimizeWithRobustClosures(s.graph, closures, RobustClosureOptions{});
+    const std::vector<std::size_t> ties{kWeak};
+    const std::vector<double> tie_scales = JudgeWeakTies(s.graph, ties, closures, r.kept, RobustClosureOptions{}, r);
+    EXPECT_GE(tie_scales[0], 0.5) << "seed " << seed;
+    for (std::size_t c = s.true_closures.size(); c < closures.size(); ++c) EXPECT_FALSE(r.kept[c]) << "seed " << seed;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < s.truth.size(); ++i) {
+      sum += (s.graph.nodes[i].estimate.translation() - clean.graph.nodes[i].estimate.translation()).squaredNorm();
+    }
+    EXPECT_LT(std::sqrt(sum / static_cast<double>(s.truth.size())), 0.01) << "seed " << seed;
+  }
+}
+
+// Without a kept closure the ties are not judged: no solve, full weight.
+TEST(RobustClosures, WeakTiesWithoutKeptClosuresKeepTheirWeight) {
+  Scenario s = MakeScenario(0, 1);
+  RobustClosureResult r;
+  const std::vector<std::size_t> ties{10, 20};
+  const std::vector<std::size_t> closures = s.true_closures;
+  const std::vector<double> scales = JudgeWeakTies(s.graph, ties, closures, std::vector<bool>(closures.size(), false),
+                                                   RobustClosureOptions{}, r);
+  EXPECT_EQ(scales, (std::vector<double>{1.0, 1.0}));
+  EXPECT_EQ(r.rounds, 0);
 }
 
 }  // namespace
