@@ -23,12 +23,22 @@ Result<std::vector<Eigen::Isometry3d>> ParseKittiPoses(std::string_view text, st
   return poses;
 }
 
-Result<std::vector<Eigen::Isometry3d>> ReadKittiPoses(const std::filesystem::path& path) {
+namespace {
+
+// The file's text through `parse(text, source_name)`, the file named in its errors.
+template <typename Parse>
+auto ReadAndParse(const std::filesystem::path& path, Parse parse) -> decltype(parse(std::string_view(), std::string_view())) {
   std::ifstream file(path);
   if (!file) return MakeError(path.string() + ": cannot open");
   std::stringstream text;
   text << file.rdbuf();
-  return ParseKittiPoses(text.str(), path.string());
+  return parse(text.str(), path.string());
+}
+
+}  // namespace
+
+Result<std::vector<Eigen::Isometry3d>> ReadKittiPoses(const std::filesystem::path& path) {
+  return ReadAndParse(path, ParseKittiPoses);
 }
 
 Eigen::Isometry3d VehicleFromKittiCamera(const Eigen::Isometry3d& world_T_cam0) {
@@ -54,11 +64,7 @@ Result<Eigen::Isometry3d> ParseKittiCalibration(std::string_view text, std::stri
 }
 
 Result<Eigen::Isometry3d> ReadKittiCalibration(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) return MakeError(path.string() + ": cannot open");
-  std::stringstream text;
-  text << file.rdbuf();
-  return ParseKittiCalibration(text.str(), path.string());
+  return ReadAndParse(path, ParseKittiCalibration);
 }
 
 std::vector<Eigen::Isometry3d> VelodyneFromKittiCamera(const std::vector<Eigen::Isometry3d>& world_T_cam0,
