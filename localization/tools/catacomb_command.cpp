@@ -27,11 +27,12 @@ namespace flat2d::localization::tools {
 
 const char* const kCatacombUsage = R"(
 build --mode catacomb DRIVE --out DIR: local-map 3D SLAM of a Velodyne capture or a KITTI
-sequence directory (thesis 6.3). Each revolution is tracked by NICP against the merged model of the current local map
-(as build --mode nicp DRIVE); every 5 m, or where a registration fails, the map is closed
-and written and a new one begins. Loop closures between local maps are proposed by
-distance and by trajectory shape, validated by NICP between the two maps (KD-tree, alpha =
-1/3) and enter the SE(3) graph of the maps behind dynamic covariance scaling. Writes:
+sequence directory (thesis 6.3). Each revolution is tracked by NICP against the merged
+model of the current local map (as build --mode nicp DRIVE); every 5 m, or where a
+registration fails, the map is closed and written and a new one begins. Loop closures
+between local maps are proposed by distance and by trajectory shape, validated by NICP
+between the two maps (KD-tree, alpha = 1/3) and enter the SE(3) graph of the maps behind
+dynamic covariance scaling. Writes:
   DIR/graph.g2o          VERTEX_SE3:QUAT per local map (optimized), EDGE_SE3:QUAT per tie
   DIR/trajectory.tum     world_T_vehicle per revolution from the optimized graph
   DIR/tracking.tum       the same before the graph: the tracking alone
@@ -39,13 +40,14 @@ distance and by trajectory shape, validated by NICP between the two maps (KD-tre
   DIR/map.ply            the local maps' points and normals at their optimized poses
   DIR/closures.txt       every candidate: maps, source, verdict, inliers, chi2, DCS scale
   DIR/local_maps/        map_NNNN.ply (points and normals, map frame), map_NNNN.tum
-  DIR/truth.tum          a KITTI sequence with poses.txt and calib.txt: its truth, world_T_vehicle
-                         per scan from the first scan's vehicle frame (also the --truth below)
+  DIR/truth.tum          a KITTI sequence with poses.txt and calib.txt: its truth,
+                         world_T_vehicle per scan from the first scan's vehicle frame (also
+                         the --truth below)
   DIR/map.f2m, map.png   the 2D prior map gridded at the optimized poses (captures only)
 Options of build --mode nicp DRIVE: --can LOG --dbc DBC --odometry CONFIG, --config FILE,
 --anchor FILE.tum, --method M, --iterations N, --max-frames N, --no-deskew,
---inverse-depth-weights, --planar,
---ground-clearance M, --ground-range M, --no-map, --json. Also:
+--inverse-depth-weights, --planar, --ground-clearance M, --ground-range M, --no-map, --json.
+Also:
   --local-map-distance M  a new local map after M metres of travel (default 5)
   --local-map-angle RAD   ... or once the sensor has turned RAD from the map's first
                           revolution (default 0: no such cut)
@@ -65,15 +67,16 @@ Options of build --mode nicp DRIVE: --can LOG --dbc DBC --odometry CONFIG, --con
   --break-chain MAP       move the tracked poses from local map MAP on by 1 m sideways and 5 deg
                           of yaw, as a failed registration with a bad guess would (the tie
                           into MAP gets the odometry's sigma): what loop closing must repair
-  --truth FILE.tum        the drive's 3D truth (flat2d-sim's truth.tum; a KITTI sequence's own
-                          by default): the JSON adds the closures' precision and recall against it
+  --truth FILE.tum        the drive's 3D truth (flat2d-sim's truth.tum; a KITTI sequence's
+                          own by default): the JSON adds the closures' precision and recall
+                          against it
 The JSON has build --mode nicp DRIVE's tracking keys (frames, failures, frame_ms_p50,
 frame_ms_p95, registration_ms_p50, sensor, tracked_distance_m; with --anchor the drift
 keys of the optimized trajectory) and local_maps, tracking_failures_cut, cuts_distance,
 cuts_angle, cuts_overlap, cuts_failure (why each local map but the last was closed),
 failure_ties, failure_ties_overruled (ties across failed registrations, and those the
-closures overruled: DCS scale below 0.5),
-candidates, candidates_distance, candidates_shape, candidates_injected, validated, accepted,
+kept closures overruled: DCS scale below 0.5), candidates, candidates_distance,
+candidates_shape, candidates_injected, validated, accepted,
 closures_kept, injected_accepted, injected_kept, edits_added, edits_removed,
 candidate_seconds, validation_ms_p50, solve_seconds, solve_rounds, graph_cost_initial,
 graph_cost_final, tracking_seconds, grid_seconds; with --truth: revisits,

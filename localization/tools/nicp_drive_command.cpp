@@ -22,15 +22,16 @@ namespace flat2d::localization::tools {
 
 const char* const kNicpDriveUsage = R"(
 build --mode nicp DRIVE --out DIR: a Velodyne capture (.pcap, .pcapng) or a KITTI sequence
-directory (velodyne/NNNNNN.bin, times.txt; no map for it, and with poses.txt and calib.txt
-DIR/truth.tum, world_T_vehicle at each scan from the first scan's vehicle frame), each complete
-revolution deskewed (KITTI scans as stored), made an organized range frame (spherical projection of the identified
+directory (velodyne/NNNNNN.bin, times.txt). Each complete revolution is deskewed (KITTI scans
+are taken as stored), made an organized range frame (spherical projection of the identified
 model, statistics over R = 0.3 m) and tracked by NICP against the merged model of the
-revolutions before (or the last keyframe revolution, a new one every metre or 0.1 rad). Writes DIR/trajectory.tum (world_T_vehicle at each
-revolution's first fan), DIR/model.ply (points and normals of every 10th revolution, every
-16th point), DIR/map.f2m (the 2D prior map: the capture gridded at the tracked poses) and
-DIR/map.png; with a CAN log also DIR/odometry.tum (the CAN odometry open loop from the same
-first pose).
+revolutions before (or the last keyframe revolution, a new one every metre or 0.1 rad).
+Writes DIR/trajectory.tum (world_T_vehicle at each revolution's first fan), DIR/model.ply
+(points and normals of every 10th revolution, every 16th point), DIR/map.f2m (the 2D prior
+map: the capture gridded at the tracked poses; not for KITTI) and DIR/map.png; with a CAN
+log also DIR/odometry.tum (the CAN odometry open loop from the same first pose); for a KITTI
+sequence with poses.txt and calib.txt DIR/truth.tum (world_T_vehicle at each scan, from the
+first scan's vehicle frame).
   --can LOG --dbc DBC --odometry CONFIG
                         CAN odometry, as for build --pcap: the guess of every pair and the
                         motion that deskews each revolution (default: the previous motion)
@@ -64,7 +65,8 @@ first pose).
                         registration), registration_ms_p50, load_ms_p50 (the deskewed
                         cloud), model_points, method, sensor, deskew, guess,
                         guesses_without_odometry, grid_seconds, viewpoints,
-                        tracked_distance_m, tracking (keyframe, frame or model); with --anchor distance_m, drift_percent,
+                        tracked_distance_m, tracking (keyframe, frame or model); with
+                        --anchor distance_m, drift_percent,
                         end_error_m, max_error_m, end_heading_error_deg (and odometry_*)
 )";
 
