@@ -46,6 +46,7 @@ RobustClosureResult OptimizeWithRobustClosures(graph::Se3PoseGraph& graph, std::
 std::vector<double> JudgeWeakTies(graph::Se3PoseGraph& graph, std::span<const std::size_t> ties,
                                   std::span<const std::size_t> closures, const std::vector<bool>& closure_kept,
                                   const RobustClosureOptions& options, RobustClosureResult& totals) {
+  if (ties.empty()) return {};
   if (std::find(closure_kept.begin(), closure_kept.end(), true) == closure_kept.end()) {
     return std::vector<double>(ties.size(), 1.0);
   }

@@ -50,7 +50,7 @@ RobustClosureResult OptimizeWithRobustClosures(graph::Se3PoseGraph& graph, std::
 // OptimizeWithRobustClosures had and gave them; the dropped ones are left out of this solve
 // (their information is restored after it). Judged in the same solve as the closures, a
 // false closure could tear the chain open at a weak tie instead of being dropped. Without a
-// kept closure the ties are not judged (scales 1, no solve). Adds its rounds, iterations
+// tie or a kept closure nothing is solved (each tie's scale 1). Adds its rounds, iterations
 // and time to `totals`; returns the ties' scales.
 std::vector<double> JudgeWeakTies(graph::Se3PoseGraph& graph, std::span<const std::size_t> ties,
                                   std::span<const std::size_t> closures, const std::vector<bool>& closure_kept,

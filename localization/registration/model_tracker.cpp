@@ -76,7 +76,9 @@ TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3
     start = Clock::now();
     tracked.result = RegisterLevels(frame, reference_T_guess);
     tracked.register_ms = MillisecondsSince(start);
-    if (tracked.result.ok() && tracked.result.inliers < options_.min_inlier_share * PointsWithNormals(frame)) {
+    const float points = PointsWithNormals(frame);
+    tracked.inlier_share = points > 0.0F ? tracked.result.inliers / static_cast<double>(points) : 0.0;
+    if (tracked.result.ok() && tracked.result.inliers < options_.min_inlier_share * points) {
       tracked.result.failure = RegistrationFailure::kTooFewCorrespondences;
     }
     if (!tracked.result.ok()) return tracked;

@@ -43,6 +43,9 @@ struct TrackedFrame {
   RegistrationResult result;  // reference_T_camera; iterations summed over the levels
   Eigen::Isometry3d model_T_camera = Eigen::Isometry3d::Identity();
   bool merged = false;
+  // The registration's inliers as a share of the frame's points with normals at the finest
+  // level (what min_inlier_share is held against; 0 when nothing was registered).
+  double inlier_share = 0.0;
   maps::range3d::MergeStats merge;
   double render_ms = 0.0;
   double register_ms = 0.0;

@@ -102,11 +102,8 @@ class RevolutionTracker {
   // merged into it.
   Registration AgainstModel(const registration::SnicpFrame& frame, const Eigen::Isometry3d& guess) {
     const registration::TrackedFrame tracked = model_tracker_->Track(frame, world_T_sensor_, guess);
-    const maps::range3d::SurfelCloud& cloud = frame.levels.front().cloud;
-    std::size_t with_normals = 0;
-    for (std::size_t i = 0; i < cloud.size(); ++i) with_normals += cloud.has_normal(i) ? 1 : 0;
     return {tracked.merged && tracked.model_T_camera.matrix().allFinite(), tracked.model_T_camera, tracked.register_ms,
-            with_normals > 0 ? tracked.result.inliers / static_cast<double>(with_normals) : 0.0};
+            tracked.inlier_share};
   }
 
   // Moves world_T_sensor_ to the revolution's pose (the guess's where registration failed).
