@@ -41,7 +41,7 @@ const FeatureSet& FeatureExtractor::Extract(const std::vector<Eigen::Vector3f>& 
   stats_.normals_ms = MillisecondsSince(start);
 
   start = Clock::now();
-  clusters_ = &segmentation_.Segment(image_, cloud_);
+  clusters_ = &segmentation_.Segment(image_, cloud_, up);
   stats_.clusters = clusters_->size();
   stats_.segmentation_ms = MillisecondsSince(start);
 

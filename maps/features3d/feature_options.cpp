@@ -65,6 +65,8 @@ void CheckSegmentation(const SegmentationOptions& segmentation, Checker& check) 
   check.AtLeast("segmentation.min_cluster_points", segmentation.min_cluster_points(), 2);
   check.AtLeast("segmentation.neighbour_cols", segmentation.neighbour_cols(), 1);
   check.Require(segmentation.min_rows() <= 64, "segmentation.min_rows", "must be at most 64");
+  check.NonNegative("segmentation.pole_max_width_m", segmentation.pole_max_width_m());
+  check.NonNegative("segmentation.pole_join_distance_m", segmentation.pole_join_distance_m());
   check.Require(segmentation.neighbour_cols() <= 16, "segmentation.neighbour_cols", "must be at most 16");
 }
 

@@ -123,5 +123,64 @@ TEST(RegionGrowing, DropsSmallClustersSkipsUndefinedNormalsAndWraps) {
   EXPECT_EQ(clusters.size_of(0), 4U);
 }
 
+// The visible half of a 0.2 m trunk 18.9 m away, `rows` rows x 6 columns, whose normals turn
+// 30 deg from column to column (a far pole: d * da / r), more than eps_n (0.9) allows.
+TestCloud FarTrunk(int rows) {
+  TestCloud t;
+  constexpr float kPi = 3.14159265F;
+  for (int row = 0; row < rows; ++row) {
+    for (int col = 0; col < 6; ++col) {
+      const float theta = (-75.0F + 30.0F * static_cast<float>(col)) * kPi / 180.0F;
+      t.Add(row, 4 + col, {18.9F - 0.2F * std::cos(theta), 0.2F * std::sin(theta), 1.2F - 0.25F * static_cast<float>(row)},
+            {-std::cos(theta), std::sin(theta), 0.0F});
+    }
+  }
+  return t;
+}
+
+SegmentationOptions PoleJoining(SegmentationOptions options) {
+  options.set_pole_max_width_m(0.5);
+  options.set_pole_join_distance_m(0.3);
+  options.set_pole_min_piece_points(2);
+  return options;
+}
+
+TEST(RegionGrowing, PoleJoiningRejoinsAFarTrunkCutByItsTurningNormals) {
+  const TestCloud t = FarTrunk(4);
+  RegionGrowing algorithm8(Options(SegmentationOptions::BOTH));
+  const Clusters& strips = algorithm8.Segment(t.image, t.cloud);
+  ASSERT_EQ(strips.size(), 6U);  // one per column
+  for (std::size_t k = 0; k < strips.size(); ++k) EXPECT_EQ(strips.size_of(k), 4U);
+
+  RegionGrowing joined(PoleJoining(Options(SegmentationOptions::BOTH)));
+  const Clusters& trunk = joined.Segment(t.image, t.cloud);
+  ASSERT_EQ(trunk.size(), 1U);
+  EXPECT_EQ(trunk.size_of(0), 24U);
+}
+
+// Pieces too wide together for a pole keep Algorithm 8's cut: two walls at a corner.
+TEST(RegionGrowing, PoleJoiningLeavesWallsAtACornerApart) {
+  const TestCloud t = Corner();
+  RegionGrowing segmentation(PoleJoining(Options(SegmentationOptions::BOTH)));
+  EXPECT_EQ(segmentation.Segment(t.image, t.cloud).size(), 2U);
+}
+
+// Single returns (foliage) and points further apart than the join distance stay pieces.
+TEST(RegionGrowing, PoleJoiningNeedsPiecesOfTwoPointsThatTouch) {
+  SegmentationOptions options = PoleJoining(Options(SegmentationOptions::BOTH));
+  const TestCloud ring = FarTrunk(1);  // one point per piece
+  RegionGrowing two_points(options);
+  EXPECT_EQ(two_points.Segment(ring.image, ring.cloud).size(), 0U);
+  options.set_pole_min_piece_points(1);
+  RegionGrowing one_point(options);
+  const Clusters& joined = one_point.Segment(ring.image, ring.cloud);
+  ASSERT_EQ(joined.size(), 1U);
+  EXPECT_EQ(joined.size_of(0), 6U);
+
+  options.set_pole_join_distance_m(0.05);  // under the 0.10 m between columns
+  RegionGrowing apart(options);
+  EXPECT_EQ(apart.Segment(ring.image, ring.cloud).size(), 0U);
+}
+
 }  // namespace
 }  // namespace flat2d::maps::features3d
