@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <Eigen/Eigenvalues>
 
@@ -48,6 +49,19 @@ std::pair<double, double> ExtentAndResidual(const std::vector<Eigen::Vector3f>& 
   return {0.5 * (high - low), residual / static_cast<double>(indices.size())};
 }
 
+// The sensor sees the near half of a pole, sampled about evenly across it (y = r sin(theta)
+// uniform in [-r, r]): the points' spread across it is l2 = r^2 / 3.
+double CrossSectionRadius(const ClusterShape& shape) { return std::sqrt(3.0 * shape.eigenvalues(1)); }
+
+// From the mean of a pole's points to its axis: their depths sqrt(r^2 - y^2) average
+// (pi / 4) r in front of the axis, along u1 (the depth direction of a round cross-section).
+Eigen::Vector3d AxisOffset(const ClusterShape& shape) {
+  const double radius = CrossSectionRadius(shape);
+  Eigen::Vector3d away = shape.axes.col(0);
+  if (away.dot(shape.mean) < 0.0) away = -away;  // the sensor is at the origin
+  return (std::numbers::pi / 4.0 * radius) * away;
+}
+
 double FloorVariance(double variance) { return std::max(variance, kMinResidualSigmaM * kMinResidualSigmaM); }
 
 std::optional<LineFeature> FitLine(const ClusterShape& shape, const std::vector<Eigen::Vector3f>& points,
@@ -63,6 +77,8 @@ std::optional<LineFeature> FitLine(const ClusterShape& shape, const std::vector<
     return (e - e.dot(line.direction) * line.direction).norm();
   });
   if (!(residual < options.line_max_residual_m())) return std::nullopt;  // Eq. 8.5, residual
+  const double min_radius = options.line_axis_min_radius_m();
+  if (min_radius > 0.0 && CrossSectionRadius(shape) >= min_radius) line.point += AxisOffset(shape);
   line.half_length_m = half_length;
   line.residual_m = residual;
   line.points = shape.count;

@@ -77,6 +77,7 @@ void CheckFitting(const FittingOptions& fitting, Checker& check) {
   check.Positive("fitting.plane_max_residual_m", fitting.plane_max_residual_m());
   check.AtLeast("fitting.min_plane_points", fitting.min_plane_points(), 3);
   check.NonNegative("fitting.min_plane_width_m", fitting.min_plane_width_m());
+  check.NonNegative("fitting.line_axis_min_radius_m", fitting.line_axis_min_radius_m());
   check.Require(fitting.line_min_roundness() >= 0.0 && fitting.line_min_roundness() < 1.0, "fitting.line_min_roundness",
                 "must be in [0, 1)");
 }

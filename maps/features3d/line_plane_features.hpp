@@ -28,7 +28,8 @@ struct PlaneFeature {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
 };
 
-// The line through `point` along unit `direction` (the cluster's mean and u3).
+// The line through `point` along unit `direction` (the cluster's mean, or the axis behind it
+// for a thick pole: fitting.line_axis_min_radius_m, and u3).
 struct LineFeature {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  // pointing up where it can (z >= 0)

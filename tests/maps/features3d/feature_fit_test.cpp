@@ -71,6 +71,41 @@ TEST(FeatureFit, PolesAreLinesNearTheirAxes) {
   }
 }
 
+// The mean of a pole's near half lies 0.74 r in front of its axis (angles uniform in +-1.3
+// rad); with line_axis_min_radius_m the line of a thick pole moves back onto the axis, and
+// a pole thinner than that limit keeps the mean.
+TEST(FeatureFit, ThickPolesAreLocatedByTheirAxis) {
+  const unsigned seed = 17;
+  std::mt19937 rng(seed);
+  FittingOptions axis_options = Options();
+  axis_options.set_line_axis_min_radius_m(0.1);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::uniform_real_distribution<float> place(-15.0F, 15.0F);
+    const Eigen::Vector2f axis(place(rng), place(rng));
+    if (axis.norm() < 3.0F) continue;
+    for (const float r : {0.2F, 0.3F}) {
+      const auto points = PoleSide(axis, r, 300, rng);
+      const Feature as_fitted = FitFeature(points, All(points.size()), Options());
+      const auto* mean = std::get_if<LineFeature>(&as_fitted);
+      ASSERT_NE(mean, nullptr) << "seed " << seed << " trial " << trial;
+      const Feature moved = FitFeature(points, All(points.size()), axis_options);
+      const auto* on_axis = std::get_if<LineFeature>(&moved);
+      ASSERT_NE(on_axis, nullptr) << "seed " << seed << " trial " << trial;
+      const double before = (mean->point.head<2>() - axis.cast<double>()).norm();
+      const double after = (on_axis->point.head<2>() - axis.cast<double>()).norm();
+      const auto radius = static_cast<double>(r);
+      EXPECT_NEAR(before, 0.74 * radius, 0.03) << "trial " << trial << " radius " << r;
+      EXPECT_LT(after, 0.2 * radius) << "trial " << trial << " radius " << r;  // 0.12 r: the angles are not even across
+      EXPECT_EQ(on_axis->direction, mean->direction);
+    }
+    const auto thin = PoleSide(axis, 0.05F, 300, rng);  // a post: r = 0.05 m under the limit
+    const Feature as_is = FitFeature(thin, All(thin.size()), Options());
+    const Feature kept = FitFeature(thin, All(thin.size()), axis_options);
+    ASSERT_TRUE(std::holds_alternative<LineFeature>(kept));
+    EXPECT_EQ(std::get<LineFeature>(kept).point, std::get<LineFeature>(as_is).point);
+  }
+}
+
 TEST(FeatureFit, WallsArePlanesWithTheirOffset) {
   const unsigned seed = 11;
   std::mt19937 rng(seed);

@@ -43,6 +43,8 @@ TEST(FeatureOptions, EachBadValueIsNamed) {
        "segmentation.pole_join_distance_m"},
       {[](FeatureExtractionOptions& o) { o.mutable_fitting()->set_line_max_spread(0.0); }, "fitting.line_max_spread"},
       {[](FeatureExtractionOptions& o) { o.mutable_fitting()->set_line_min_roundness(1.0); }, "fitting.line_min_roundness"},
+      {[](FeatureExtractionOptions& o) { o.mutable_fitting()->set_line_axis_min_radius_m(-0.1); },
+       "fitting.line_axis_min_radius_m"},
       {[](FeatureExtractionOptions& o) { o.set_columns(10); }, "columns"},
       {[](FeatureExtractionOptions& o) { (*o.mutable_vertical()->mutable_min_points_above_by_sensor())["vlp64"] = 2; },
        "vertical.min_points_above_by_sensor"},
