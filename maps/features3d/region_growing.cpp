@@ -97,7 +97,7 @@ void RegionGrowing::JoinThinPieces(const range3d::IndexImage& image, const range
 
 void RegionGrowing::JoinIfThin(std::size_t offset, std::size_t neighbour, const range3d::IndexImage& image,
                                const range3d::SurfelCloud& cloud) {
-  if (piece_of_[neighbour] < 0) return;
+  if (piece_of_[neighbour] < 0 || piece_of_[neighbour] == piece_of_[offset]) return;  // most neighbours
   const std::size_t min_piece = options_.pole_min_piece_points();
   if (pieces_[static_cast<std::size_t>(piece_of_[offset])].size < min_piece ||
       pieces_[static_cast<std::size_t>(piece_of_[neighbour])].size < min_piece) {
