@@ -16,7 +16,9 @@ const Clusters& RegionGrowing::Segment(const range3d::IndexImage& image, const r
   piece_points_.clear();
   piece_points_.reserve(pixels);
   pieces_.clear();
-  pieces_.reserve(pixels);
+  pieces_.reserve(pixels);  // at most a piece per pixel: no allocation after the first call
+  parent_.reserve(pixels);
+  cursor_.reserve(pixels);
   for (std::size_t offset = 0; offset < pixels; ++offset) {
     const std::int32_t index = image.indices()[offset];
     if (index < 0 || piece_of_[offset] >= 0 || !cloud.has_normal(static_cast<std::size_t>(index))) continue;
