@@ -139,7 +139,7 @@ void RegionGrowing::CollectClusters() {
   for (std::size_t k = 0; k < pieces_.size(); ++k) {
     if (parent_[k] != static_cast<std::int32_t>(k)) continue;
     const Piece& root = pieces_[k];
-    if (!Kept(root)) continue;  // dropped, its pixels stay labelled
+    if (!Kept(root)) continue;  // dropped: too few points or rows
     cursor_[k] = clusters_.begin.back();
     clusters_.begin.push_back(clusters_.begin.back() + root.joined);
   }
