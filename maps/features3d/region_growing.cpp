@@ -5,6 +5,18 @@
 #include <limits>
 
 namespace flat2d::maps::features3d {
+namespace {
+
+constexpr std::size_t kDropped = std::numeric_limits<std::size_t>::max();
+
+// The pixel offset of (row, col), the column wrapped round the azimuth (|col| < 2 cols).
+std::size_t WrappedOffset(int row, int col, int cols) {
+  if (col < 0) col += cols;
+  if (col >= cols) col -= cols;
+  return static_cast<std::size_t>(row) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(col);
+}
+
+}  // namespace
 
 const Clusters& RegionGrowing::Segment(const range3d::IndexImage& image, const range3d::SurfelCloud& cloud,
                                        const Eigen::Vector3f& up) {
@@ -58,12 +70,8 @@ void RegionGrowing::Grow(std::size_t start, const range3d::IndexImage& image, co
     p.ground_max = p.ground_max.cwiseMax(ground);
     const Seed s = SeedAt(cloud, seed);
     for (int r = std::max(0, row - 1); r <= std::min(rows - 1, row + 1); ++r) {
-      const std::size_t row_start = static_cast<std::size_t>(r) * static_cast<std::size_t>(cols);
       for (int dc = -reach; dc <= reach; ++dc) {
-        int c = col + dc;  // the azimuth wraps round
-        if (c < 0) c += cols;
-        if (c >= cols) c -= cols;
-        const std::size_t neighbour = row_start + static_cast<std::size_t>(c);
+        const std::size_t neighbour = WrappedOffset(r, col + dc, cols);
         const std::int32_t index = indices[neighbour];
         if (index < 0 || piece_of_[neighbour] >= 0 || !Joins(s, cloud, static_cast<std::size_t>(index))) continue;
         piece_of_[neighbour] = piece;
@@ -82,16 +90,10 @@ void RegionGrowing::JoinThinPieces(const range3d::IndexImage& image, const range
   const int reach = static_cast<int>(options_.neighbour_cols());
   for (int row = 0; row < rows; ++row) {
     for (int col = 0; col < cols; ++col) {
-      const std::size_t offset = static_cast<std::size_t>(row) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(col);
+      const std::size_t offset = WrappedOffset(row, col, cols);
       if (piece_of_[offset] < 0) continue;
       for (int r = row; r <= std::min(rows - 1, row + 1); ++r) {
-        for (int dc = r == row ? 1 : -reach; dc <= reach; ++dc) {
-          int c = col + dc;
-          if (c < 0) c += cols;
-          if (c >= cols) c -= cols;
-          JoinIfThin(offset, static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c),
-                     image, cloud);
-        }
+        for (int dc = r == row ? 1 : -reach; dc <= reach; ++dc) JoinIfThin(offset, WrappedOffset(r, col + dc, cols), image, cloud);
       }
     }
   }
@@ -135,7 +137,7 @@ std::int32_t RegionGrowing::Root(std::int32_t piece) {
 void RegionGrowing::CollectClusters() {
   clusters_.points.clear();
   clusters_.begin.assign(1, 0);
-  cursor_.assign(pieces_.size(), 0);
+  cursor_.assign(pieces_.size(), kDropped);
   for (std::size_t k = 0; k < pieces_.size(); ++k) {
     if (parent_[k] != static_cast<std::int32_t>(k)) continue;
     const Piece& root = pieces_[k];
@@ -146,7 +148,7 @@ void RegionGrowing::CollectClusters() {
   clusters_.points.resize(clusters_.begin.back());
   for (std::size_t k = 0; k < pieces_.size(); ++k) {
     const auto root = static_cast<std::size_t>(Root(static_cast<std::int32_t>(k)));
-    if (!Kept(pieces_[root])) continue;
+    if (cursor_[root] == kDropped) continue;
     const Piece& piece = pieces_[k];
     std::copy_n(piece_points_.begin() + static_cast<std::ptrdiff_t>(piece.begin), piece.size,
                 clusters_.points.begin() + static_cast<std::ptrdiff_t>(cursor_[root]));

@@ -94,7 +94,7 @@ class RegionGrowing {
   std::vector<std::int32_t> piece_points_;  // point indices, piece after piece
   std::vector<Piece> pieces_;
   std::vector<std::int32_t> parent_;        // union-find over pieces
-  std::vector<std::size_t> cursor_;         // per root: where its next point goes in clusters_
+  std::vector<std::size_t> cursor_;         // per kept root: where its next point goes in clusters_
   Eigen::Vector3f ground_x_ = Eigen::Vector3f::UnitX(), ground_y_ = Eigen::Vector3f::UnitY();
 };
 
