@@ -28,11 +28,14 @@ RangeProjection RangeProjection::Spherical(const SphericalLayout& layout) {
   const std::vector<float>& elevation = layout.row_elevation_rad;
   const bool descending = std::is_sorted(elevation.rbegin(), elevation.rend()) &&
                           std::adjacent_find(elevation.begin(), elevation.end()) == elevation.end();
-  if (elevation.size() < 2 || layout.cols <= 0 || !descending) return projection;
+  const bool shifts_fit = layout.row_column_shift.empty() || layout.row_column_shift.size() == elevation.size();
+  if (elevation.size() < 2 || layout.cols <= 0 || !descending || !shifts_fit) return projection;
 
   projection.rows_ = static_cast<int>(elevation.size());
   projection.cols_ = layout.cols;
   projection.row_elevation_ = elevation;
+  projection.row_column_shift_ = layout.row_column_shift;
+  projection.row_column_shift_.resize(elevation.size(), 0.0F);
   projection.cols_per_rad_ = static_cast<float>(layout.cols) / (2.0F * kPi);
   projection.mean_row_spacing_rad_ = (elevation.front() - elevation.back()) / static_cast<float>(elevation.size() - 1);
 
@@ -67,11 +70,11 @@ RangeProjection RangeProjection::SphericalBinned(int cols, int rows, float min_e
 
 void RangeProjection::ProjectSpherical(const float* x, const float* y, const float* z, std::size_t count,
                                        std::int32_t* offset, float* depth) const {
-  // First pass: the fine elevation bin (in `offset`) and the column, as ProjectSpherical(p)
-  // computes them. Both are floors of values that are >= 0 where valid, so truncation is
-  // the floor there; a bin below 0 is marked -1.
+  // First pass: the fine elevation bin (in `offset`) and the unshifted column, as
+  // ProjectSpherical(p) computes them. The bin is the floor of a value >= 0 where valid, so
+  // truncation is the floor there; a bin below 0 is marked -1.
   assert(count <= kMaxBatch);
-  std::array<std::int32_t, kMaxBatch> column;
+  std::array<float, kMaxBatch> column;
   // Members copied to locals: the stores below could otherwise alias them for the compiler.
   const auto bins = static_cast<float>(elevation_lut_.size());
   const float min_elevation = lut_min_elevation_, bins_per_rad = lut_bins_per_rad_, cols_per_rad = cols_per_rad_;
@@ -86,14 +89,18 @@ void RangeProjection::ProjectSpherical(const float* x, const float* y, const flo
     const float col = (FastAtan2(y[i], x[i]) + kPi) * cols_per_rad;
     offset[i] = static_cast<std::int32_t>(valid ? bin : -1.0F);
     depth[i] = range;
-    column[i] = static_cast<std::int32_t>(valid ? col : 0.0F);
+    column[i] = valid ? col : 0.0F;
   }
+  // Second pass: the row, then the row's column shift.
   for (std::size_t i = 0; i < count; ++i) {
     if (offset[i] < 0) continue;
     const int row = elevation_lut_[static_cast<std::size_t>(offset[i])];
-    int col = column[i];
-    if (col >= cols_) col -= cols_;
-    offset[i] = row < 0 ? -1 : row * cols_ + col;
+    if (row < 0) {
+      offset[i] = -1;
+      continue;
+    }
+    const float shifted = column[i] + row_column_shift_[static_cast<std::size_t>(row)];
+    offset[i] = row * cols_ + WrappedColumn(static_cast<int>(std::floor(shifted)));
   }
 }
 
@@ -102,7 +109,8 @@ Eigen::Vector3f RangeProjection::Unproject(int row, int col, float depth) const 
     return {(static_cast<float>(col) - intrinsics_.cx) * depth / intrinsics_.fx,
             (static_cast<float>(row) - intrinsics_.cy) * depth / intrinsics_.fy, depth};
   }
-  const float azimuth = (static_cast<float>(col) + 0.5F) / cols_per_rad_ - kPi;
+  const float azimuth =
+      (static_cast<float>(col) + 0.5F - row_column_shift_[static_cast<std::size_t>(row)]) / cols_per_rad_ - kPi;
   const float elevation = row_elevation_[static_cast<std::size_t>(row)];
   const float horizontal = depth * std::cos(elevation);
   return {horizontal * std::cos(azimuth), horizontal * std::sin(azimuth), depth * std::sin(elevation)};

@@ -35,6 +35,11 @@ struct PinholeIntrinsics {
 struct SphericalLayout {
   int cols = 2048;
   std::vector<float> row_elevation_rad;
+  // Per row, columns added to the azimuth's column before it is cut to a pixel (empty: none).
+  // A sensor's lasers fire one after another as it turns, so one firing sequence spans a
+  // fraction of a column and a column border can split it; shifting each laser back by its
+  // firing delay puts the whole sequence in one column (range_frame.hpp, LidarProjection).
+  std::vector<float> row_column_shift;
 };
 
 struct Pixel {
@@ -94,9 +99,15 @@ class RangeProjection {
     if (bin < 0 || bin >= static_cast<int>(elevation_lut_.size())) return {};
     const int row = elevation_lut_[static_cast<std::size_t>(bin)];
     if (row < 0) return {};
-    int col = static_cast<int>(std::floor((FastAtan2(p.y(), p.x()) + kPi) * cols_per_rad_));
-    if (col >= cols_) col -= cols_;
-    return {row, col, range};
+    const float shifted = (FastAtan2(p.y(), p.x()) + kPi) * cols_per_rad_ + row_column_shift_[static_cast<std::size_t>(row)];
+    return {row, WrappedColumn(static_cast<int>(std::floor(shifted))), range};
+  }
+
+  // A column one turn off (a shift or the azimuth at +pi) back into [0, cols).
+  int WrappedColumn(int col) const {
+    if (col >= cols_) return col - cols_;
+    if (col < 0) return col + cols_;
+    return col;
   }
 
   static constexpr float kPi = 3.14159265358979F;
@@ -130,6 +141,7 @@ class RangeProjection {
   // Spherical: row of each fine elevation bin (-1 between or beyond the rows).
   std::vector<float> row_elevation_;
   std::vector<std::int16_t> elevation_lut_;
+  std::vector<float> row_column_shift_;  // one per row, zeros where the layout has none
   float lut_min_elevation_ = 0.0F;
   float lut_bins_per_rad_ = 0.0F;
   float cols_per_rad_ = 0.0F;

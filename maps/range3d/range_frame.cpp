@@ -8,6 +8,7 @@
 #include "hal/cloud/pcd_file.hpp"
 #include "hal/cloud/ply_file.hpp"
 #include "hal/cloud/tum_depth_png.hpp"
+#include "hal/velodyne/firing_timing.hpp"
 #include "hal/velodyne/laser_table.hpp"
 #include "maps/range3d/depth_cloud.hpp"
 #include "maps/range3d/neighbour_statistics.hpp"
@@ -48,6 +49,31 @@ std::vector<float> RowElevations(SensorModel sensor) {
   std::sort(elevation.rbegin(), elevation.rend());
   elevation.erase(std::unique(elevation.begin(), elevation.end()), elevation.end());
   return elevation;
+}
+
+// Per row, the columns the sensor turns between the first firing of a sequence and the
+// row's laser firing, at `rotation_rpm` (empty where the shift does not apply). The sensor
+// turns clockwise seen from above, the image's azimuth grows counter-clockwise, so a later
+// laser's point lies that many columns before the sequence's first: added back, the whole
+// sequence shares a column. Not for lasers with azimuth offsets (the VLP-32C's up to 4 deg):
+// one sequence spans many columns there, and a pole's points stay together only by azimuth.
+std::vector<float> FiringColumnShifts(SensorModel sensor, int columns, double rotation_rpm) {
+  if (rotation_rpm <= 0.0 || sensor == SensorModel::kKitti64) return {};
+  const hal::velodyne::Model model = VelodyneModelOf(sensor);
+  const hal::velodyne::LaserTable table = hal::velodyne::DefaultLaserTable(model);
+  const hal::velodyne::FiringTiming timing = hal::velodyne::TimingFor(model);
+  const std::vector<float> rows = RowElevations(sensor);
+  if (static_cast<int>(rows.size()) != table.num_lasers) return {};  // two lasers share a row
+  const double columns_per_us = rotation_rpm / 60.0 * 1e-6 * static_cast<double>(columns);
+  std::vector<float> shift(rows.size(), 0.0F);
+  for (int laser = 0; laser < table.num_lasers; ++laser) {
+    const hal::velodyne::LaserCorrection& correction = table.lasers[static_cast<std::size_t>(laser)];
+    if (correction.rot_correction_rad != 0.0) return {};
+    const auto row = static_cast<std::size_t>(
+        std::find(rows.begin(), rows.end(), static_cast<float>(correction.elevation_rad)) - rows.begin());
+    shift[row] = static_cast<float>(timing.channel_offset_us[static_cast<std::size_t>(laser)] * columns_per_us);
+  }
+  return shift;
 }
 
 float ElevationOf(const Eigen::Vector3f& p) { return std::atan2(p.z(), std::hypot(p.x(), p.y())); }
@@ -123,12 +149,12 @@ SensorModel SensorModelOf(hal::velodyne::Model model) {
   return SensorModel::kAuto;
 }
 
-RangeProjection LidarProjection(SensorModel sensor, int columns) {
+RangeProjection LidarProjection(SensorModel sensor, int columns, double rotation_rpm) {
   if (sensor == SensorModel::kKitti64) {
     // KITTI's archive has no laser table: 64 equal rows over the HDL-64E's +2 .. -24.9 deg.
     return RangeProjection::SphericalBinned(columns, 64, -24.9F * kDegToRad, 2.0F * kDegToRad);
   }
-  return RangeProjection::Spherical({columns, RowElevations(sensor)});
+  return RangeProjection::Spherical({columns, RowElevations(sensor), FiringColumnShifts(sensor, columns, rotation_rpm)});
 }
 
 RangeFrame UnprojectDepth(const hal::cloud::DepthImage& depth, const RangeFrameOptions& options, int scale) {

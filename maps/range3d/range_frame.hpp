@@ -76,7 +76,11 @@ SensorModel DetectLidar(const std::vector<Eigen::Vector3f>& points);
 // The range-frame model of a decoded Velodyne model.
 SensorModel SensorModelOf(hal::velodyne::Model model);
 
-// The spherical projection of an organized LiDAR model with `columns` columns.
-RangeProjection LidarProjection(SensorModel sensor, int columns);
+// The spherical projection of an organized LiDAR model with `columns` columns. With a
+// rotation speed (rpm > 0), a Velodyne's columns follow its firing sequences rather than
+// azimuth alone: every laser of one sequence lands in one column (the VLP-16's 16 lasers
+// span 0.75 of a 2160-column image's column at 600 rpm). Vertical stacks then share a column,
+// which Algorithm 7 needs (maps/features3d/vertical_removal.hpp). Registration keeps 0.
+RangeProjection LidarProjection(SensorModel sensor, int columns, double rotation_rpm = 0.0);
 
 }  // namespace flat2d::maps::range3d

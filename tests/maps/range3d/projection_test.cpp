@@ -80,10 +80,17 @@ TEST(RangeProjection, SphericalRoundTripsPixelCentres) {
   }
 }
 
+// The HDL-32E layout with each row's column shifted: fractions of a column, one of them
+// negative, as firing-aligned columns have (range_frame.hpp, LidarProjection).
+SphericalLayout ShiftedHdl32Layout() {
+  SphericalLayout layout = Hdl32Layout();
+  for (int row = 0; row < 32; ++row) layout.row_column_shift.push_back(0.03F * static_cast<float>(row) - 0.095F);
+  return layout;
+}
+
 // The batch projection must give the pixels of Project one at a time, including for points
 // above and below the lasers, at the origin, on the axes (atan2's folds) and NaN points.
-TEST(RangeProjection, SphericalBatchEqualsOneAtATime) {
-  const RangeProjection projection = RangeProjection::Spherical(Hdl32Layout());
+void ExpectBatchEqualsOneAtATime(const RangeProjection& projection) {
   const unsigned seed = 7;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> coordinate(-60.0F, 60.0F);
@@ -92,8 +99,8 @@ TEST(RangeProjection, SphericalBatchEqualsOneAtATime) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (const Eigen::Vector3f& p : {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(5, 0, 0), Eigen::Vector3f(-5, 0, 0),
                                   Eigen::Vector3f(0, 5, 0), Eigen::Vector3f(0, -5, 0), Eigen::Vector3f(-5, -0.0F, 0.1F),
-                                  Eigen::Vector3f(3, 3, 0), Eigen::Vector3f(0, 0, 5), Eigen::Vector3f(nan, 1, 1),
-                                  Eigen::Vector3f(1, nan, 1), Eigen::Vector3f(1, 1, nan)}) {
+                                  Eigen::Vector3f(-5, 0.001F, 0.1F), Eigen::Vector3f(3, 3, 0), Eigen::Vector3f(0, 0, 5),
+                                  Eigen::Vector3f(nan, 1, 1), Eigen::Vector3f(1, nan, 1), Eigen::Vector3f(1, 1, nan)}) {
     points.push_back(p);
   }
   for (std::size_t begin = 0; begin < points.size(); begin += RangeProjection::kMaxBatch) {
@@ -111,9 +118,38 @@ TEST(RangeProjection, SphericalBatchEqualsOneAtATime) {
       ASSERT_EQ(offset[i], expected) << "seed " << seed << ", point " << points[begin + i].transpose();
       if (one.valid()) {
         EXPECT_EQ(depth[i], one.depth);
+        EXPECT_GE(one.col, 0);
+        EXPECT_LT(one.col, projection.cols());
       }
     }
   }
+}
+
+TEST(RangeProjection, SphericalBatchEqualsOneAtATime) {
+  ExpectBatchEqualsOneAtATime(RangeProjection::Spherical(Hdl32Layout()));
+  ExpectBatchEqualsOneAtATime(RangeProjection::Spherical(ShiftedHdl32Layout()));
+}
+
+TEST(RangeProjection, ShiftedRowsMoveTheirColumns) {
+  const RangeProjection shifted = RangeProjection::Spherical(ShiftedHdl32Layout());
+  const RangeProjection plain = RangeProjection::Spherical(Hdl32Layout());
+  int moved = 0;
+  for (int row = 0; row < 32; ++row) {
+    const float shift = 0.03F * static_cast<float>(row) - 0.095F;
+    for (int col = 0; col < 2160; col += 37) {
+      // Pixel centres round-trip; a point in the middle of an unshifted column moves to the
+      // next column exactly when its shift (never within 0.005 of a half) carries it over.
+      const Pixel centre = shifted.Project(shifted.Unproject(row, col, 12.5F));
+      ASSERT_TRUE(centre.valid());
+      EXPECT_EQ(centre.row, row);
+      EXPECT_EQ(centre.col, col);
+      const Eigen::Vector3f mid_column = plain.Unproject(row, col, 12.5F);
+      const int expected = static_cast<int>(std::floor(static_cast<float>(col) + 0.5F + shift) + 2160) % 2160;
+      EXPECT_EQ(shifted.Project(mid_column).col, expected) << "row " << row << " col " << col;
+      moved += expected != col ? 1 : 0;
+    }
+  }
+  EXPECT_GT(moved, 0);
 }
 
 TEST(RangeProjection, SphericalRejectsAnUnsortedTable) {
@@ -121,6 +157,9 @@ TEST(RangeProjection, SphericalRejectsAnUnsortedTable) {
   std::swap(layout.row_elevation_rad[3], layout.row_elevation_rad[4]);
   EXPECT_EQ(RangeProjection::Spherical(layout).rows(), 0);
   EXPECT_EQ(RangeProjection::Spherical(SphericalLayout{}).rows(), 0);
+  SphericalLayout short_shifts = Hdl32Layout();
+  short_shifts.row_column_shift.assign(31, 0.0F);  // one row short
+  EXPECT_EQ(RangeProjection::Spherical(short_shifts).rows(), 0);
 }
 
 TEST(RangeProjection, BinnedRowsSpanTheElevationRange) {
