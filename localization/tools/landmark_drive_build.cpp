@@ -26,7 +26,8 @@ class LandmarkMapper {
     const Clock::time_point start = Clock::now();
     const maps::range3d::SensorModel sensor = maps::range3d::SensorModelOf(revolution.model);
     if (!extractor_) {
-      extractor_.emplace(maps::range3d::LidarProjection(sensor, static_cast<int>(options_.features.columns())),
+      extractor_.emplace(maps::range3d::LidarProjection(sensor, static_cast<int>(options_.features.columns()),
+                                                         options_.features.rotation_rpm()),
                          maps::features3d::OptionsForSensor(options_.features, sensor));
       result_.sensor = std::string(maps::range3d::SensorModelName(sensor));
     }

@@ -93,6 +93,9 @@ Status ValidateFeatureOptions(const FeatureExtractionOptions& options) {
   check.NonNegative("max_range_m", options.max_range_m());
   check.AtLeast("columns", options.columns(), 360);
   check.Require(options.columns() <= 8192, "columns", "must be at most 8192");
+  // Velodyne sensors turn at 300-1200 rpm; 0 turns the firing alignment off.
+  check.Require(options.rotation_rpm() >= 0.0 && options.rotation_rpm() <= 1200.0, "rotation_rpm",
+                "must be in [0, 1200]");
   return check.status();
 }
 

@@ -27,6 +27,7 @@ using maps::features3d::FeatureExtractionOptions;
 using maps::features3d::FeatureExtractor;
 
 constexpr int kColumns = 2160;  // the shipped config's azimuth columns
+constexpr double kRotationRpm = 600.0;  // ... and its rotation speed
 constexpr double kSensorHeightM = 1.9;
 
 std::optional<FeatureExtractionOptions> Shipped(bool removal) {
@@ -101,12 +102,12 @@ void BM_FeaturesRealHdl32(benchmark::State& state) {
     return;
   }
   const auto sensor = maps::range3d::DetectLidar(cloud->points);
-  Run(state, cloud->points, sensor, maps::range3d::LidarProjection(sensor, kColumns));
+  Run(state, cloud->points, sensor, maps::range3d::LidarProjection(sensor, kColumns, kRotationRpm));
 }
 BENCHMARK(BM_FeaturesRealHdl32)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 
 void BM_FeaturesSimOfficeHdl32(benchmark::State& state) {
-  const auto projection = maps::range3d::LidarProjection(maps::range3d::SensorModel::kHdl32e, kColumns);
+  const auto projection = maps::range3d::LidarProjection(maps::range3d::SensorModel::kHdl32e, kColumns, kRotationRpm);
   Run(state, OfficeRevolution(projection), maps::range3d::SensorModel::kHdl32e, projection);
 }
 BENCHMARK(BM_FeaturesSimOfficeHdl32)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);

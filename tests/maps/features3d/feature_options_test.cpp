@@ -46,6 +46,8 @@ TEST(FeatureOptions, EachBadValueIsNamed) {
       {[](FeatureExtractionOptions& o) { o.mutable_fitting()->set_line_axis_min_radius_m(-0.1); },
        "fitting.line_axis_min_radius_m"},
       {[](FeatureExtractionOptions& o) { o.set_columns(10); }, "columns"},
+      {[](FeatureExtractionOptions& o) { o.set_rotation_rpm(-600.0); }, "rotation_rpm"},
+      {[](FeatureExtractionOptions& o) { o.set_rotation_rpm(3000.0); }, "rotation_rpm"},
       {[](FeatureExtractionOptions& o) { (*o.mutable_vertical()->mutable_min_points_above_by_sensor())["vlp64"] = 2; },
        "vertical.min_points_above_by_sensor"},
       {[](FeatureExtractionOptions& o) { (*o.mutable_vertical()->mutable_min_points_above_by_sensor())["pinhole"] = 2; },
