@@ -46,7 +46,7 @@ const FeatureSet& FeatureExtractor::Extract(const std::vector<Eigen::Vector3f>& 
   stats_.segmentation_ms = MillisecondsSince(start);
 
   start = Clock::now();
-  FitClusters();
+  FitClusters(up);
   stats_.fitting_ms = MillisecondsSince(start);
   return features_;
 }
@@ -78,12 +78,12 @@ void FeatureExtractor::KeepSteepLineDirections(const Eigen::Vector3f& up) {
   }
 }
 
-void FeatureExtractor::FitClusters() {
+void FeatureExtractor::FitClusters(const Eigen::Vector3f& up) {
   features_.planes.clear();
   features_.lines.clear();
   for (std::size_t k = 0; k < clusters_->size(); ++k) {
     const std::span<const std::int32_t> members(clusters_->points.data() + clusters_->begin[k], clusters_->size_of(k));
-    const Feature feature = FitFeature(cloud_.points, members, options_.fitting());
+    const Feature feature = FitFeature(cloud_.points, members, options_.fitting(), up);
     if (const auto* line = std::get_if<LineFeature>(&feature)) features_.lines.push_back(*line);
     if (const auto* plane = std::get_if<PlaneFeature>(&feature)) features_.planes.push_back(*plane);
   }

@@ -58,7 +58,7 @@ class FeatureExtractor {
  private:
   std::size_t DropFarPixels();
   void KeepSteepLineDirections(const Eigen::Vector3f& up);
-  void FitClusters();
+  void FitClusters(const Eigen::Vector3f& up);
 
   const range3d::RangeProjection projection_;
   const FeatureExtractionOptions options_;

@@ -89,7 +89,8 @@ std::optional<LineFeature> FitLine(const ClusterShape& shape, const std::vector<
 }
 
 std::optional<PlaneFeature> FitPlane(const ClusterShape& shape, const std::vector<Eigen::Vector3f>& points,
-                                     std::span<const std::int32_t> indices, const FittingOptions& options) {
+                                     std::span<const std::int32_t> indices, const FittingOptions& options,
+                                     const Eigen::Vector3f& up) {
   const Eigen::Vector3d& l = shape.eigenvalues;
   if (shape.count < static_cast<int>(options.min_plane_points())) return std::nullopt;
   if (!(l(0) < options.plane_max_flatness() * l.sum())) return std::nullopt;  // Eq. 8.6, shape
@@ -105,6 +106,11 @@ std::optional<PlaneFeature> FitPlane(const ClusterShape& shape, const std::vecto
   const auto [half_minor, unused] = ExtentAndResidual(points, indices, shape.mean, shape.axes.col(1),
                                                       [](const Eigen::Vector3d&) { return 0.0; });
   if (2.0 * half_minor < options.min_plane_width_m()) return std::nullopt;  // a strip
+  if (options.min_plane_height_m() > 0.0) {
+    const auto [half_height, none] = ExtentAndResidual(points, indices, shape.mean, up.cast<double>(),
+                                                       [](const Eigen::Vector3d&) { return 0.0; });
+    if (2.0 * half_height < options.min_plane_height_m()) return std::nullopt;  // a desk, a bench
+  }
   plane.half_extent = {half_major, half_minor};
   plane.residual_m = residual;
   plane.points = shape.count;
@@ -116,11 +122,11 @@ std::optional<PlaneFeature> FitPlane(const ClusterShape& shape, const std::vecto
 }  // namespace
 
 Feature FitFeature(const std::vector<Eigen::Vector3f>& points, std::span<const std::int32_t> indices,
-                   const FittingOptions& options) {
+                   const FittingOptions& options, const Eigen::Vector3f& up) {
   if (indices.size() < 3) return std::monostate{};
   const ClusterShape shape = ShapeOf(points, indices);
   if (auto line = FitLine(shape, points, indices, options)) return *line;
-  if (auto plane = FitPlane(shape, points, indices, options)) return *plane;
+  if (auto plane = FitPlane(shape, points, indices, options, up)) return *plane;
   return std::monostate{};
 }
 

@@ -26,8 +26,9 @@ inline constexpr double kMinResidualSigmaM = 0.01;
 
 using Feature = std::variant<std::monostate, LineFeature, PlaneFeature>;
 
-// The feature the points[indices] make, or monostate when neither model fits.
+// The feature the points[indices] make, or monostate when neither model fits. `up` (unit,
+// gravity's opposite in the points' frame) measures a plane's height.
 Feature FitFeature(const std::vector<Eigen::Vector3f>& points, std::span<const std::int32_t> indices,
-                   const FittingOptions& options);
+                   const FittingOptions& options, const Eigen::Vector3f& up = Eigen::Vector3f::UnitZ());
 
 }  // namespace flat2d::maps::features3d

@@ -78,6 +78,7 @@ void CheckFitting(const FittingOptions& fitting, Checker& check) {
   check.AtLeast("fitting.min_plane_points", fitting.min_plane_points(), 3);
   check.NonNegative("fitting.min_plane_width_m", fitting.min_plane_width_m());
   check.NonNegative("fitting.line_axis_min_radius_m", fitting.line_axis_min_radius_m());
+  check.NonNegative("fitting.min_plane_height_m", fitting.min_plane_height_m());
   check.Require(fitting.line_min_roundness() >= 0.0 && fitting.line_min_roundness() < 1.0, "fitting.line_min_roundness",
                 "must be in [0, 1)");
 }

@@ -133,6 +133,24 @@ TEST(FeatureFit, FlatStripIsNoLine) {
   EXPECT_TRUE(std::holds_alternative<PlaneFeature>(FitFeature(points, All(points.size()), Options())));
 }
 
+// A desk's front, 1.6 m wide and 0.75 m tall, is a plane until planes must be 0.9 m tall;
+// the height is measured along `up`, so the same face lying on its side (up = y) is 1.6 m
+// tall and stays.
+TEST(FeatureFit, LowFacesAreNoPlanesWhenPlanesMustBeTall) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> along(0.0F, 1.6F), height(-1.9F, -1.15F);
+  std::normal_distribution<float> noise(0.0F, 0.01F);
+  std::vector<Eigen::Vector3f> desk;
+  for (int k = 0; k < 300; ++k) desk.emplace_back(5.0F + noise(rng), along(rng), height(rng));
+  FittingOptions tall = Options();
+  tall.set_min_plane_height_m(0.9);
+  EXPECT_TRUE(std::holds_alternative<PlaneFeature>(FitFeature(desk, All(desk.size()), Options())));
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(FitFeature(desk, All(desk.size()), tall)));
+  EXPECT_TRUE(std::holds_alternative<PlaneFeature>(FitFeature(desk, All(desk.size()), tall, Eigen::Vector3f::UnitY())));
+  const auto wall = Wall(5.0F, 0.0F, 1.6F, 300, rng);  // 3 m tall
+  EXPECT_TRUE(std::holds_alternative<PlaneFeature>(FitFeature(wall, All(wall.size()), tall)));
+}
+
 TEST(FeatureFit, BlobsAndTinyClustersAreNeither) {
   std::mt19937 rng(5);
   std::normal_distribution<float> spread(0.0F, 0.5F);

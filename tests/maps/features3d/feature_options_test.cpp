@@ -45,6 +45,8 @@ TEST(FeatureOptions, EachBadValueIsNamed) {
       {[](FeatureExtractionOptions& o) { o.mutable_fitting()->set_line_min_roundness(1.0); }, "fitting.line_min_roundness"},
       {[](FeatureExtractionOptions& o) { o.mutable_fitting()->set_line_axis_min_radius_m(-0.1); },
        "fitting.line_axis_min_radius_m"},
+      {[](FeatureExtractionOptions& o) { o.mutable_fitting()->set_min_plane_height_m(-1.0); },
+       "fitting.min_plane_height_m"},
       {[](FeatureExtractionOptions& o) { o.set_columns(10); }, "columns"},
       {[](FeatureExtractionOptions& o) { o.set_rotation_rpm(-600.0); }, "rotation_rpm"},
       {[](FeatureExtractionOptions& o) { o.set_rotation_rpm(3000.0); }, "rotation_rpm"},
