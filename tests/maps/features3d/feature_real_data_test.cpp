@@ -58,17 +58,31 @@ double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 // How far apart two features of the same thing are: the angle of their normals or
 // directions, and the offset (planes: d; lines: the first's point from the second line).
+// For planes also where they are seen: the first's centroid from the second plane. Their d
+// (distance from the sensor) differs by the normals' angle times the lever from the foot of
+// the perpendicular to the points: 1 deg at 2.5 m is 4 cm, though the two planes cross
+// among the points.
 struct Agreement {
   int looked = 0, found = 0;
-  std::vector<double> angle_deg, offset_m;
+  std::vector<double> angle_deg, offset_m, at_centroid_m;
   void Report(const char* what) const {
-    std::printf("static VLP-16 %s: %d of %d found again; angle median %.3f p90 %.3f deg, offset median %.4f p90 %.4f m\n",
-                what, found, looked, Percentile(angle_deg, 0.5), Percentile(angle_deg, 0.9), Percentile(offset_m, 0.5),
+    std::printf("static VLP-16 %s: %d of %d found again; angle median %.3f p90 %.3f max %.3f deg, offset median %.4f p90 %.4f m",
+                what, found, looked, Percentile(angle_deg, 0.5), Percentile(angle_deg, 0.9), Percentile(angle_deg, 1.0),
+                Percentile(offset_m, 0.5),
                 Percentile(offset_m, 0.9));
+    if (!at_centroid_m.empty()) {
+      std::printf(", at the centroid median %.4f p90 %.4f max %.4f m", Percentile(at_centroid_m, 0.5),
+                  Percentile(at_centroid_m, 0.9), Percentile(at_centroid_m, 1.0));
+    }
+    std::printf("\n");
   }
 };
 
 double Offset(const PlaneFeature& a, const PlaneFeature& b) { return std::abs(a.d - b.d); }
+void RecordAtCentroid(const PlaneFeature& a, const PlaneFeature& b, Agreement& out) {
+  out.at_centroid_m.push_back(std::abs(b.normal.dot(a.centroid) + b.d));
+}
+void RecordAtCentroid(const LineFeature&, const LineFeature&, Agreement&) {}
 double Offset(const LineFeature& a, const LineFeature& b) {
   const Eigen::Vector3d e = a.point - b.point;
   return (e - e.dot(b.direction) * b.direction).norm();
@@ -94,12 +108,13 @@ void Compare(const std::vector<F>& first, const std::vector<F>& other, Agreement
     ++out.found;
     out.angle_deg.push_back(AngleDeg(Axis(p), Axis(*best)));
     out.offset_m.push_back(best_offset);
+    RecordAtCentroid(p, *best, out);
   }
 }
 
 // The sensor stood still: the features of the first sweep are looked for in the other four.
 // Indoors, with the ground removed, the room gives mostly lines (table legs, shelf posts);
-// its walls behind furniture stack too few rings per column to survive the removal.
+// of its walls behind furniture, one stacks enough rings per column to survive the removal.
 TEST(FeatureRealData, StaticVlp16SweepsGiveTheSameFeatures) {
   FLAT2D_REQUIRE_DATA(folder, "lidar3d/vlp16_nebula_indoor");
   const auto sweeps = FilesIn(folder, ".pcd");
@@ -117,9 +132,12 @@ TEST(FeatureRealData, StaticVlp16SweepsGiveTheSameFeatures) {
   EXPECT_GE(lines.found, 0.8 * lines.looked);
   EXPECT_LE(Percentile(lines.angle_deg, 0.5), 2.0);  // the line tolerance; short legs tilt most
   EXPECT_LE(Percentile(lines.offset_m, 0.5), 0.02);
-  // Planes are few and small here (docs/benchmarks.md): each found again must agree.
+  // Planes are few here (docs/benchmarks.md): each found again must agree within the issue's
+  // 1 deg and 2 cm where it is seen.
+  ASSERT_GE(planes.looked, 4);
+  EXPECT_GE(planes.found, planes.looked / 2);
   for (const double angle : planes.angle_deg) EXPECT_LE(angle, 1.0);
-  for (const double offset : planes.offset_m) EXPECT_LE(offset, 0.02);
+  for (const double offset : planes.at_centroid_m) EXPECT_LE(offset, 0.02);
 }
 
 // The room's planes (walls, floor, table tops) without the removal, which keeps the walls'
@@ -138,12 +156,12 @@ TEST(FeatureRealData, StaticVlp16SweepsGiveTheSamePlanesWithoutTheRemoval) {
   }
   planes.Report("planes without the removal");
   large.Report("planes of 50 points or more without the removal");
-  // Measured (docs/benchmarks.md): 10 of 16 found again, median 0.45 deg and 1.4 cm; the p90
-  // (4 deg, 8 cm) is a 33-point plane on clutter and the sweeps' 2-3 cm range noise.
+  // Measured (docs/benchmarks.md): 12 of 12 found again, angle median 0.33 deg (p90 0.74),
+  // at the centroid median ~0.5 cm. Planes must be 0.9 m tall: clutter makes none.
   ASSERT_GE(planes.looked, 12);
-  EXPECT_GE(planes.found, planes.looked / 2);
-  EXPECT_LE(Percentile(planes.angle_deg, 0.5), 1.0);
-  EXPECT_LE(Percentile(planes.offset_m, 0.5), 0.02);
+  EXPECT_GE(planes.found, planes.looked * 3 / 4);
+  EXPECT_LE(Percentile(planes.angle_deg, 0.9), 1.0);
+  EXPECT_LE(Percentile(planes.at_centroid_m, 0.9), 0.02);
 }
 
 TEST(FeatureRealData, KittiFramesGiveFeatures) {
