@@ -8,7 +8,10 @@ namespace {
 
 // omega of one measurement at `depth`: isotropic noise growing with depth, in units of a
 // measurement at 1 m.
-float MeasurementWeight(float depth) { return 1.0F / std::max(depth * depth, 1e-4F); }
+float MeasurementWeight(float depth, DepthWeighting weighting) {
+  const float d = std::max(depth, 1e-2F);
+  return weighting == DepthWeighting::kInverse ? 1.0F / d : 1.0F / (d * d);
+}
 
 }  // namespace
 
@@ -112,7 +115,7 @@ void SurfelModel::AddFramePoints(const SurfelCloud& frame, const IndexImage& fra
       const auto j = static_cast<std::size_t>(index);
       const Cluster& cluster =
           clusters_[static_cast<std::size_t>(row) * static_cast<std::size_t>(frame_image.cols()) + static_cast<std::size_t>(col)];
-      const float w = MeasurementWeight(frame_image.depth(row, col));
+      const float w = MeasurementWeight(frame_image.depth(row, col), options_.weighting);
       const float total = w + cluster.weight;
       const Eigen::Vector3f point = (w * frame.points[j] + cluster.point_sum) / total;
       const Eigen::Vector3f normal = (w * frame.normals[j] + cluster.normal_sum).normalized();

@@ -19,7 +19,8 @@
 //
 // Values the thesis leaves open (stated in docs/benchmarks.md): tau = max(tau_min,
 // tau_ratio * depth); omega of a measurement 1 / depth^2 (a depth camera's isotropic noise
-// grows with depth), summed and capped so that the model keeps following the scene; the
+// grows with depth; ch. 6's LiDAR local maps take 1 / depth, `weighting`), summed and
+// capped so that the model keeps following the scene; the
 // model bounded by max_points, dropping the points seen longest ago.
 #pragma once
 
@@ -34,6 +35,12 @@
 
 namespace flat2d::maps::range3d {
 
+// How a measurement's weight omega falls with its depth d.
+enum class DepthWeighting : std::uint8_t {
+  kInverseSquare,  // 1 / d^2: a depth camera's noise (Eq. 5.22)
+  kInverse,        // 1 / d: the rich points of LiDAR local maps (Eq. 6.4, merged by 6.11-6.12)
+};
+
 struct SurfelModelOptions {
   float tau_min_m = 0.01F;          // tau of 5.1.4 near the sensor
   float tau_ratio = 0.03F;          // ... and as a share of the depth beyond
@@ -42,6 +49,7 @@ struct SurfelModelOptions {
   std::size_t max_points = 3'000'000;  // ~100 MB: ten full 640x480 views
   float flat_curvature = 0.02F;     // disc information below this curvature (Eq. 5.2)
   float disc_epsilon = 1e-3F;
+  DepthWeighting weighting = DepthWeighting::kInverseSquare;
 };
 
 struct MergeStats {

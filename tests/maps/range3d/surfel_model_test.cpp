@@ -62,6 +62,26 @@ TEST(SurfelModel, TheSameFrameTwiceMergesPointForPoint) {
   for (const float w : model.weights()) EXPECT_LE(w, SurfelModelOptions{}.max_weight);
 }
 
+// A first merge writes each point with its measurement's weight: 1 / depth^2 for a depth
+// camera (Eq. 5.22), 1 / depth for LiDAR local maps (Eq. 6.4).
+TEST(SurfelModel, AMeasurementWeighsByItsDepth) {
+  const RangeProjection projection = SmallCamera();
+  const Frame frame = Render(testing::OfficeRoom(), projection, 0.0F, 1);
+  for (const DepthWeighting weighting : {DepthWeighting::kInverseSquare, DepthWeighting::kInverse}) {
+    SurfelModelOptions options;
+    options.weighting = weighting;
+    SurfelModel model{options};
+    model.Merge(frame.cloud, frame.image, projection, CameraPose());
+    ASSERT_GT(model.size(), 1000U);
+    const Eigen::Isometry3f camera_T_model = CameraPose().inverse();
+    for (std::size_t i = 0; i < model.size(); i += 97) {
+      const float depth = (camera_T_model * model.cloud().points[i]).z();
+      const float expected = weighting == DepthWeighting::kInverse ? 1.0F / depth : 1.0F / (depth * depth);
+      ASSERT_NEAR(model.weights()[i], expected, 1e-4F * expected) << "point " << i << " at " << depth << " m";
+    }
+  }
+}
+
 TEST(SurfelModel, ARemovedObjectIsSeenThroughAndItsWallKeptBehindAnAddedOne) {
   const RangeProjection projection = SmallCamera();
   testing::BoxScene empty = testing::OfficeRoom();
