@@ -3,7 +3,8 @@
 // out before normals and segmentation, which halves the work (Fig. 8.7) and removes the
 // surfaces that make no line or plane landmark.
 //
-// A column of the image holds the lasers of one azimuth, so the points of a vertical
+// A column of the image holds the lasers of one azimuth (of one firing sequence, with the
+// columns by firing of range_frame.hpp's LidarProjection), so the points of a vertical
 // structure share a column and, projected onto the ground plane, one spot. Per column, top
 // row first: a point not yet labelled vertical counts the points of the rows below whose
 // ground projections lie within eps_r of its own; more than eps_t and they all are labelled
