@@ -203,8 +203,8 @@ double PathLength(const std::vector<hal::trajectory::StampedPose>& trajectory) {
 
 bool IsDriveBuild(int argc, char** argv) {
   // The flags of either mode that take no value.
-  constexpr std::array<std::string_view, 7> kSwitches{"--json", "--no-deskew", "--no-map", "--planar", "--identity-guess",
-                                                      "--inverse-depth-weights", "--range-merge-weights"};
+  constexpr std::array<std::string_view, 6> kSwitches{"--json", "--no-deskew", "--no-map", "--planar", "--identity-guess",
+                                                      "--inverse-depth-weights"};
   for (int i = 0; i < argc; ++i) {
     const std::string_view before = i > 0 ? argv[i - 1] : "";
     const bool option_value = before.starts_with("--") && std::find(kSwitches.begin(), kSwitches.end(), before) == kSwitches.end();
