@@ -29,9 +29,9 @@ class Extractors {
   maps::features3d::FeatureExtractor& For(SensorModel sensor) {
     auto it = extractors_.find(sensor);
     if (it == extractors_.end()) {
-      const auto projection = maps::range3d::LidarProjection(sensor, static_cast<int>(options_.columns()), options_.rotation_rpm());
       it = extractors_.emplace(sensor, std::make_unique<maps::features3d::FeatureExtractor>(
-                                          projection, maps::features3d::OptionsForSensor(options_, sensor))).first;
+                                          maps::features3d::ProjectionForSensor(options_, sensor),
+                                          maps::features3d::OptionsForSensor(options_, sensor))).first;
     }
     return *it->second;
   }

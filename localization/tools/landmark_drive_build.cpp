@@ -26,8 +26,7 @@ class LandmarkMapper {
     const Clock::time_point start = Clock::now();
     const maps::range3d::SensorModel sensor = maps::range3d::SensorModelOf(revolution.model);
     if (!extractor_) {
-      extractor_.emplace(maps::range3d::LidarProjection(sensor, static_cast<int>(options_.features.columns()),
-                                                         options_.features.rotation_rpm()),
+      extractor_.emplace(maps::features3d::ProjectionForSensor(options_.features, sensor),
                          maps::features3d::OptionsForSensor(options_.features, sensor));
       result_.sensor = std::string(maps::range3d::SensorModelName(sensor));
     }

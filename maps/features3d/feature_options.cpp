@@ -109,6 +109,10 @@ Result<FeatureExtractionOptions> LoadFeatureOptions(const std::filesystem::path&
   return options;
 }
 
+range3d::RangeProjection ProjectionForSensor(const FeatureExtractionOptions& options, range3d::SensorModel sensor) {
+  return range3d::LidarProjection(sensor, static_cast<int>(options.columns()), options.rotation_rpm());
+}
+
 FeatureExtractionOptions OptionsForSensor(const FeatureExtractionOptions& options, range3d::SensorModel sensor) {
   FeatureExtractionOptions resolved = options;
   const auto& by_sensor = options.vertical().min_points_above_by_sensor();

@@ -22,6 +22,10 @@ Result<FeatureExtractionOptions> LoadFeatureOptions(const std::filesystem::path&
 // becomes vertical.min_points_above.
 FeatureExtractionOptions OptionsForSensor(const FeatureExtractionOptions& options, range3d::SensorModel sensor);
 
+// The spherical image the options describe for `sensor`: `columns` columns, aligned with the
+// firing sequences at `rotation_rpm` (range3d::LidarProjection).
+range3d::RangeProjection ProjectionForSensor(const FeatureExtractionOptions& options, range3d::SensorModel sensor);
+
 // The integral-image statistics of 8.1.3 with these normals options (no disc information:
 // the features need only the normal).
 range3d::SurfaceStatisticsOptions StatisticsOptions(const NormalOptions& normals);

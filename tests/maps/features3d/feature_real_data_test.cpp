@@ -42,7 +42,7 @@ FeatureSet FeaturesOf(const std::filesystem::path& pcd, bool removal = true) {
   EXPECT_EQ(sensor, range3d::SensorModel::kVlp16);
   FeatureExtractionOptions options = OptionsForSensor(Shipped(), sensor);
   options.mutable_vertical()->set_enabled(removal);
-  FeatureExtractor extractor(range3d::LidarProjection(sensor, 2160, options.rotation_rpm()), options);
+  FeatureExtractor extractor(ProjectionForSensor(options, sensor), options);
   return extractor.Extract(cloud->points, Eigen::Vector3f::UnitZ());
 }
 
