@@ -68,6 +68,13 @@ RangeProjection RangeProjection::SphericalBinned(int cols, int rows, float min_e
   return Spherical(layout);
 }
 
+RangeProjection RangeProjection::ColumnsDividedBy(int scale) const {
+  if (pinhole_ || rows_ == 0 || scale < 1 || cols_ % scale != 0) return Spherical({});
+  SphericalLayout layout{cols_ / scale, row_elevation_, row_column_shift_};
+  for (float& shift : layout.row_column_shift) shift /= static_cast<float>(scale);
+  return Spherical(layout);
+}
+
 void RangeProjection::ProjectSpherical(const float* x, const float* y, const float* z, std::size_t count,
                                        std::int32_t* offset, float* depth) const {
   // First pass: the fine elevation bin (in `offset`) and the unshifted column, as

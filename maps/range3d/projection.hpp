@@ -58,6 +58,11 @@ class RangeProjection {
   static RangeProjection SphericalBinned(int cols, int rows, float min_elevation_rad,
                                          float max_elevation_rad);
 
+  // A spherical projection's coarser level (a registration pyramid's, 6.3.1): the same
+  // rows, cols / scale columns, so that full column c lands in column c / scale. Returns a
+  // projection with no rows for a pinhole, or where scale < 1 or does not divide cols.
+  RangeProjection ColumnsDividedBy(int scale) const;
+
   bool pinhole() const { return pinhole_; }
   int rows() const { return rows_; }
   int cols() const { return cols_; }

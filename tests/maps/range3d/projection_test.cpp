@@ -152,6 +152,40 @@ TEST(RangeProjection, ShiftedRowsMoveTheirColumns) {
   EXPECT_GT(moved, 0);
 }
 
+// A pyramid level of a spherical view: same rows, and every point in column c of the full
+// view lands in column c / scale of the level, shifts included.
+TEST(RangeProjection, CoarserColumnsHoldTheFullColumnsInBlocks) {
+  const RangeProjection full = RangeProjection::Spherical(ShiftedHdl32Layout());
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> azimuth(-3.14159F, 3.14159F), elevation(-30.0F * kDegToRad, 10.0F * kDegToRad);
+  for (const int scale : {2, 4, 8}) {
+    const RangeProjection level = full.ColumnsDividedBy(scale);
+    ASSERT_EQ(level.rows(), full.rows());
+    ASSERT_EQ(level.cols(), full.cols() / scale);
+    int compared = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const float a = azimuth(random), e = elevation(random);
+      const Eigen::Vector3f p(20.0F * std::cos(e) * std::cos(a), 20.0F * std::cos(e) * std::sin(a), 20.0F * std::sin(e));
+      const Pixel fine = full.Project(p), coarse = level.Project(p);
+      ASSERT_EQ(fine.valid(), coarse.valid());
+      if (!fine.valid()) continue;
+      // Left out: points within FastAtan2's error (7e-4 of a column) of a block border, where
+      // the two images' float arithmetic may round to either side.
+      const double column = (static_cast<double>(a) + 3.14159265358979) * 2160.0 / (2.0 * 3.14159265358979) +
+                            (0.03 * fine.row - 0.095);
+      const double into_block = std::fmod(column + 2160.0, static_cast<double>(scale));
+      if (into_block < 2e-3 || into_block > scale - 2e-3) continue;
+      EXPECT_EQ(coarse.row, fine.row);
+      EXPECT_EQ(coarse.col, fine.col / scale) << "scale " << scale << " full column " << fine.col;
+      ++compared;
+    }
+    EXPECT_GT(compared, 10000);
+  }
+  EXPECT_EQ(full.ColumnsDividedBy(7).rows(), 0);  // 2160 is not a multiple of 7
+  EXPECT_EQ(full.ColumnsDividedBy(0).rows(), 0);
+  EXPECT_EQ(RangeProjection::Pinhole(PinholeIntrinsics{}).ColumnsDividedBy(2).rows(), 0);
+}
+
 TEST(RangeProjection, SphericalRejectsAnUnsortedTable) {
   SphericalLayout layout = Hdl32Layout();
   std::swap(layout.row_elevation_rad[3], layout.row_elevation_rad[4]);
