@@ -1,7 +1,9 @@
 #include "localization/registration/model_tracker.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 
 #include "hal/common/time.hpp"
 #include "localization/registration/correspondence_finder.hpp"
@@ -36,12 +38,31 @@ PinholeIntrinsics Scaled(const PinholeIntrinsics& full, int scale) {
           full.cy * inverse};
 }
 
-// The pairs a registration could make at the finest level.
-float PointsWithNormals(const SnicpFrame& frame) {
-  const maps::range3d::SurfelCloud& cloud = frame.levels.back().cloud;
+// The pairs a registration of `cloud` could make.
+float PointsWithNormals(const maps::range3d::SurfelCloud& cloud) {
   std::size_t count = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) count += cloud.has_normal(i) ? 1 : 0;
   return static_cast<float>(count);
+}
+
+// The points `frame`'s image shows in every scale-th column, into `out` (its buffers kept).
+void EveryColumn(const maps::range3d::RangeFrame& frame, int scale, maps::range3d::SurfelCloud& out) {
+  out.points.clear();
+  out.normals.clear();
+  out.curvature.clear();
+  out.disc_gain.clear();
+  const maps::range3d::SurfelCloud& cloud = frame.cloud;
+  for (int row = 0; row < frame.image.rows(); ++row) {
+    for (int col = 0; col < frame.image.cols(); col += scale) {
+      const std::int32_t index = frame.image.at(row, col);
+      if (index < 0) continue;
+      const auto i = static_cast<std::size_t>(index);
+      out.points.push_back(cloud.points[i]);
+      out.normals.push_back(cloud.normals[i]);
+      out.curvature.push_back(cloud.curvature[i]);
+      out.disc_gain.push_back(cloud.disc_gain[i]);
+    }
+  }
 }
 
 }  // namespace
@@ -50,11 +71,22 @@ ModelTracker::ModelTracker(const PinholeIntrinsics& intrinsics, const ModelTrack
     : ModelTracker(RangeProjection::Pinhole(intrinsics), options) {}
 
 ModelTracker::ModelTracker(const RangeProjection& sensor, const ModelTrackerOptions& options)
-    : options_(options), model_(options.model), scales_(sensor.pinhole() ? options.scales : std::vector<int>{1}) {
+    : options_(options), model_(options.model) {
   if (!sensor.pinhole()) {
     full_view_ = sensor;
-    level_views_.push_back(sensor);
+    for (const int scale : options.lidar_column_scales) {
+      RangeProjection level = sensor.ColumnsDividedBy(scale);
+      if (level.rows() == 0) break;
+      scales_.push_back(scale);
+      level_views_.push_back(std::move(level));
+    }
+    if (scales_.empty()) {
+      scales_.push_back(1);
+      level_views_.push_back(sensor);
+    }
+    level_sources_.resize(scales_.size());
   } else {
+    scales_ = options.scales;
     int coarsest = 1;
     for (const int scale : scales_) coarsest = std::max(coarsest, scale);
     const PinholeIntrinsics wide = Widened(sensor.intrinsics(), options.margin, coarsest);
@@ -74,9 +106,9 @@ TrackedFrame ModelTracker::Track(const SnicpFrame& frame, const Eigen::Isometry3
     RenderReference(model_T_reference.cast<float>());
     tracked.render_ms = MillisecondsSince(start);
     start = Clock::now();
-    tracked.result = RegisterLevels(frame, reference_T_guess);
+    float points = 0.0F;
+    tracked.result = RegisterLevels(frame, reference_T_guess, points);
     tracked.register_ms = MillisecondsSince(start);
-    const float points = PointsWithNormals(frame);
     tracked.inlier_share = points > 0.0F ? tracked.result.inliers / static_cast<double>(points) : 0.0;
     if (tracked.result.ok() && tracked.result.inliers < options_.min_inlier_share * points) {
       tracked.result.failure = RegistrationFailure::kTooFewCorrespondences;
@@ -96,11 +128,12 @@ void ModelTracker::RenderReference(const Eigen::Isometry3f& model_T_reference) {
   model_.Render(full_view_, model_T_reference, view_, view_image_);
   for (std::size_t level = 0; level < scales_.size(); ++level) {
     const int scale = scales_[level];
+    const int row_step = full_view_.pinhole() ? scale : 1;  // a LiDAR's levels keep every row
     maps::range3d::IndexImage& image = level_images_[level];
     image.Clear(image.rows(), image.cols());
     for (int row = 0; row < image.rows(); ++row) {
       for (int col = 0; col < image.cols(); ++col) {
-        const int full_row = row * scale, full_col = col * scale;
+        const int full_row = row * row_step, full_col = col * scale;
         const std::int32_t index = view_image_.at(full_row, full_col);
         if (index >= 0) image.Set(row, col, index, view_image_.depth(full_row, full_col));
       }
@@ -108,23 +141,36 @@ void ModelTracker::RenderReference(const Eigen::Isometry3f& model_T_reference) {
   }
 }
 
-RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const Eigen::Isometry3d& reference_T_guess) {
+RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const Eigen::Isometry3d& reference_T_guess,
+                                                float& finest_points) {
   NicpOptions nicp = options_.nicp;
   nicp.iterations = options_.iterations_per_level;
   RegistrationResult result;
   result.target_T_source = reference_T_guess;
   int iterations = 0;
-  for (std::size_t level = 0; level < level_views_.size() && level < frame.levels.size(); ++level) {
+  const std::size_t levels = full_view_.pinhole() ? std::min(level_views_.size(), frame.levels.size()) : level_views_.size();
+  for (std::size_t level = 0; level < levels; ++level) {
     // As RegisterFrames: the normal term's weight is given for R = 0.1 m (nicp_options.hpp).
-    const double radius_ratio = static_cast<double>(frame.levels[level].statistics_radius_m) / kNormalWeightRadiusM;
+    const float radius = (full_view_.pinhole() ? frame.levels[level] : frame.levels.back()).statistics_radius_m;
+    const double radius_ratio = static_cast<double>(radius) / kNormalWeightRadiusM;
     nicp.normal_weight = options_.nicp.normal_weight * radius_ratio * radius_ratio;
     ProjectiveCorrespondenceFinder finder(view_, level_views_[level], &level_images_[level]);
-    result = Nicp(nicp).Register(view_, finder, frame.levels[level].cloud, result.target_T_source);
+    const maps::range3d::SurfelCloud& source = SourceAt(frame, level);
+    finest_points = PointsWithNormals(source);
+    result = Nicp(nicp).Register(view_, finder, source, result.target_T_source);
     iterations += result.iterations;
     if (!result.ok()) break;
   }
   result.iterations = iterations;
   return result;
+}
+
+const maps::range3d::SurfelCloud& ModelTracker::SourceAt(const SnicpFrame& frame, std::size_t level) {
+  if (full_view_.pinhole()) return frame.levels[level].cloud;
+  const maps::range3d::RangeFrame& revolution = frame.levels.back();
+  if (scales_[level] == 1) return revolution.cloud;
+  EveryColumn(revolution, scales_[level], level_sources_[level]);
+  return level_sources_[level];
 }
 
 }  // namespace flat2d::localization::registration

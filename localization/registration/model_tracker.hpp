@@ -6,10 +6,13 @@
 //      reference view while the optimization moves it; coarser levels take every s-th
 //      pixel of that view. Rendered from its own pose, a frame's image comes back pixel
 //      for pixel, so with a model of one frame this is frame-to-frame registration.
+//      A spinning LiDAR's spherical view sees all round already; its coarser levels
+//      (6.3.1's pyramid) keep every row (a HDL-32E has 32) and take every s-th column, of
+//      the rendered view and of the revolution alike.
 //   2. The frame is registered to the rendered view in the inverse form of Eq. 5.20 from
 //      the predicted motion: the reference projection is fixed and the frame moves, level
 //      by level (NICP: one level, 10 iterations; SNICP: 1/4, 1/2, full, 3 iterations
-//      each, 5.3).
+//      each, 5.3; LiDAR: options.lidar_column_scales).
 //   3. On success the frame's full-resolution cloud is merged at the estimated pose
 //      (maps/range3d/surfel_model.hpp); a failed registration keeps the prediction and
 //      leaves the model untouched, so one bad frame cannot corrupt it. Registration fails
@@ -30,6 +33,10 @@ namespace flat2d::localization::registration {
 struct ModelTrackerOptions {
   NicpOptions nicp;                  // its iterations are replaced by iterations_per_level
   std::vector<int> scales{4, 2, 1};  // the frame's levels, coarse to fine; the last is 1
+  // A spherical view's levels, coarse to fine, as divisors of its columns (each must divide
+  // them; one that does not ends the pyramid there). The revolution comes as one level and
+  // its coarser ones are drawn from it. The thesis' 1/8, 1/4, 1/2 is {8, 4, 2}.
+  std::vector<int> lidar_column_scales{1};
   int iterations_per_level = 3;
   // The reference view's extra width and height on each side, as a share of the image's.
   float margin = 0.125F;
@@ -58,10 +65,11 @@ class ModelTracker {
   ModelTracker(const maps::range3d::PinholeIntrinsics& intrinsics, const ModelTrackerOptions& options);
   // `sensor`: the full-resolution projection. A pinhole camera's view is widened by
   // options.margin; a spinning LiDAR's spherical view sees all round already and is
-  // registered at its one level (options.scales is taken as {1}).
+  // registered at options.lidar_column_scales.
   ModelTracker(const maps::range3d::RangeProjection& sensor, const ModelTrackerOptions& options);
 
-  // `frame.levels` matches options.scales (MakeSnicpFrame, or one FrameFromDepth level).
+  // `frame.levels` matches options.scales (MakeSnicpFrame, or one FrameFromDepth level);
+  // a LiDAR revolution is one full-resolution level.
   // The model is seen from model_T_reference (the last tracked pose) and the frame starts
   // at reference_T_guess. The first frame only seeds the model, at model_T_reference *
   // reference_T_guess.
@@ -72,7 +80,13 @@ class ModelTracker {
 
  private:
   void RenderReference(const Eigen::Isometry3f& model_T_reference);
-  RegistrationResult RegisterLevels(const SnicpFrame& frame, const Eigen::Isometry3d& reference_T_guess);
+  // `finest_points`: the points with normals of the last level registered (what
+  // min_inlier_share is held against).
+  RegistrationResult RegisterLevels(const SnicpFrame& frame, const Eigen::Isometry3d& reference_T_guess,
+                                    float& finest_points);
+  // The points registered at `level`: the frame's own level for a camera, every s-th
+  // column of the revolution for a LiDAR (drawn into level_sources_).
+  const maps::range3d::SurfelCloud& SourceAt(const SnicpFrame& frame, std::size_t level);
 
   const ModelTrackerOptions options_;
   maps::range3d::SurfelModel model_;
@@ -80,6 +94,7 @@ class ModelTracker {
   maps::range3d::RangeProjection full_view_;                  // the (widened) full-resolution view
   std::vector<maps::range3d::RangeProjection> level_views_;  // ... at each scale
   std::vector<maps::range3d::IndexImage> level_images_;
+  std::vector<maps::range3d::SurfelCloud> level_sources_;  // LiDAR: the revolution's columns per level
   maps::range3d::SurfelCloud view_;  // the rendered model, camera frame
   maps::range3d::IndexImage view_image_;
 };
