@@ -166,7 +166,8 @@ class RevolutionTracker {
     registration::ModelTrackerOptions tracker;
     tracker.nicp = options_.nicp;
     tracker.nicp.metric = registration::MetricOf(options_.method);
-    tracker.iterations_per_level = options_.nicp.iterations;
+    tracker.lidar_column_scales = options_.lidar_pyramid;
+    tracker.iterations_per_level = options_.lidar_pyramid.size() > 1 ? options_.pyramid_iterations : options_.nicp.iterations;
     tracker.model = options_.model;
     model_tracker_.emplace(first.levels.front().projection, tracker);
     (void)model_tracker_->Track(first, world_T_sensor_, Eigen::Isometry3d::Identity());

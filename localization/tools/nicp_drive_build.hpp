@@ -100,6 +100,12 @@ struct NicpDriveOptions {
   // local map merges its revolutions into a model of its own: the cut costs the tracking
   // nothing (a fresh model holds one revolution), at a second merge per revolution.
   bool continuous_tracking = false;
+  // The model tracker's pyramid (thesis 6.3.1: 1/8, 1/4, 1/2 of the image): the spherical
+  // view's columns divided by each, coarse to fine, every row kept (an HDL-32E's 32 rows
+  // cannot be halved three times); iterations_per_level at each. {1}: one level at full
+  // resolution, nicp.iterations there (the default).
+  std::vector<int> lidar_pyramid{1};
+  int pyramid_iterations = 3;
   // Keep the vehicle on the ground plane after every registration (height, roll and pitch
   // zero): flat2d's ground vehicles on flat ground. Without it a pitch bias of a few tenths
   // of a degree climbs tens of metres over a kilometre.

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "hal/cloud/kitti_sequence.hpp"
 #include "hal/cloud/ply_writer.hpp"
@@ -42,6 +43,12 @@ first scan's vehicle frame).
                         against it (default: the odometry's pose, else the origin)
   --method M            nicp (default) or point-to-plane
   --iterations N        (default 10)
+  --pyramid S,S,...     register each revolution level by level, coarse to fine, at 1/S of
+                        the image's columns (every row kept), e.g. 8,4,2 (the thesis' 1/8,
+                        1/4, 1/2) or 8,4,2,1; each S divides the 2160 columns (default 1:
+                        one level, --iterations there)
+  --pyramid-iterations N
+                        iterations at each level of a pyramid (default 3)
   --max-frames N        only the first N complete revolutions
   --keyframe-distance M --keyframe-angle RAD
                         with --tracking keyframe: a keyframe is kept until the sensor is M
@@ -81,6 +88,26 @@ bool IsCapture(std::string_view path) { return path.ends_with(".pcap") || path.e
 // A drive to track: a Velodyne capture or a KITTI sequence directory.
 bool IsDrive(std::string_view path) { return IsCapture(path) || hal::cloud::IsKittiSequence(std::filesystem::path(path)); }
 
+// "8,4,2": column divisors, coarse to fine, each dividing the image's columns.
+std::vector<int> ParsePyramid(std::string_view flag, const std::string& text, int columns) {
+  std::vector<int> scales;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string part = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    scales.push_back(static_cast<int>(maps::cli::ParseInteger(kTool, flag, part.c_str(), 1, columns)));
+    if (columns % scales.back() != 0) {
+      Fail(1, std::string(flag) + ": " + part + " does not divide the image's " + std::to_string(columns) + " columns");
+    }
+    if (scales.size() > 1 && scales.back() >= scales[scales.size() - 2]) {
+      Fail(1, std::string(flag) + ": the levels go coarse to fine, each divisor smaller than the one before");
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return scales;
+}
+
 }  // namespace
 
 bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a) {
@@ -99,6 +126,8 @@ bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a) {
     if (!method) Fail(1, "build DRIVE: --method is nicp or point-to-plane");
     a.options.method = *method;
   } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
+  else if (arg == "--pyramid") a.options.lidar_pyramid = ParsePyramid(arg, value(), a.options.frames.lidar_columns);
+  else if (arg == "--pyramid-iterations") a.options.pyramid_iterations = integer(1000);
   else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
   else if (arg == "--no-deskew") a.options.deskew = false;
   else if (arg == "--inverse-depth-weights") a.options.nicp.inverse_depth_weights = true;

@@ -140,6 +140,25 @@ class Catacomb(unittest.TestCase):
         for flag, value in (("--local-map-overlap", "1.5"), ("--local-map-overlap", "-0.1"), ("--local-map-angle", "-1")):
             self.assertEqual(run(MAP, *base, flag, value, "--out", os.path.join(WORK, "cuts_bad")).returncode, 1, flag)
 
+    def test_pyramid(self):
+        """The tracker's pyramid of columns (thesis 6.3.1; the default 8,4,2,1) tracks the first 20
+        revolutions as one full level does; levels that do not divide the 2160 columns or do not
+        go coarse to fine are usage errors naming the flag."""
+        base = ["build", "--mode", "catacomb", self.pcap, *self.can, "--max-frames", "20", "--no-map", "--no-loops",
+                "--anchor", self.truth, "--json"]
+        plain = run(MAP, *base, "--pyramid", "1", "--out", os.path.join(WORK, "pyramid_plain"))
+        self.assertEqual(plain.returncode, 0, plain.stderr)
+        pyramid = run(MAP, *base, "--out", os.path.join(WORK, "pyramid"))
+        self.assertEqual(pyramid.returncode, 0, pyramid.stderr)
+        p, q = json.loads(plain.stdout), json.loads(pyramid.stdout)
+        self.assertEqual(q["failures"], 0)
+        # About 17 m at 9 m/s; the CAN odometry alone ends about 0.3 m off (its gyro and wheels).
+        self.assertLess(q["end_error_m"], max(0.1, 2.0 * p["end_error_m"]), (p["end_error_m"], q["end_error_m"]))
+        for value in ("7", "2,4", "8,8", "x", "0"):
+            bad = run(MAP, *base, "--pyramid", value, "--out", os.path.join(WORK, "pyramid_bad"))
+            self.assertEqual(bad.returncode, 1, value)
+            self.assertIn("--pyramid", bad.stderr, value)
+
     def test_bad_input(self):
         out = os.path.join(WORK, "bad")
         # A capture that is missing: status 2, naming it.
