@@ -1,16 +1,19 @@
 // NICP's time on one core (issue 11; thesis Table 5.1: 12 ms a 640x480 pair, multi-core,
 // i7-3630QM): a TUM fr1/rpy depth pair with the new frame's statistics, at full and half
-// resolution, the statistics alone, and an HDL-32E revolution pair. Files are read once
+// resolution, the statistics alone, and an HDL-32E revolution pair; and the local-map
+// tracker's step on an HDL-32E revolution with and without its pyramid (issue 12). Files are read once
 // outside the timed loop: a camera or a driver hands the frame over decoded.
 #include <benchmark/benchmark.h>
 
 #include <string>
+#include <vector>
 
 #include "hal/cloud/pcd_file.hpp"
 #include "hal/cloud/tum_depth_png.hpp"
 #include "localization/registration/correspondence_finder.hpp"
 #include "localization/registration/frame_registration.hpp"
 #include "localization/registration/linear_system.hpp"
+#include "localization/registration/model_tracker.hpp"
 #include "localization/registration/snicp.hpp"
 #include "maps/range3d/range_frame.hpp"
 #include "tests/testing/data_path.hpp"
@@ -158,6 +161,46 @@ void BM_NicpHdl32eRevolution(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_NicpHdl32eRevolution)->Unit(benchmark::kMillisecond);
+
+// The local-map tracker's step on an HDL-32E revolution (issue 12): render the model (one
+// revolution) from the last pose, register the next revolution to it and merge it. Arg:
+// the pyramid, 0 one level at full resolution (10 iterations), 1 the catacomb default 1/8,
+// 1/4, 1/2, full (3 each), 2 the thesis' 1/8, 1/4, 1/2 (3 each). The new revolution's
+// statistics are left out (the same for all three).
+void BM_TrackerHdl32eRevolution(benchmark::State& state) {
+  const auto target_path = flat2d::testing::FindData("lidar3d/hdl32e_fast_gicp_pair/251370668.pcd");
+  const auto source_path = flat2d::testing::FindData("lidar3d/hdl32e_fast_gicp_pair/251371071.pcd");
+  if (!target_path || !source_path) {
+    state.SkipWithError("real data not found: lidar3d/hdl32e_fast_gicp_pair (set FLAT2D_DATA)");
+    return;
+  }
+  const auto target_cloud = hal::cloud::ReadPcd(*target_path);
+  const auto source_cloud = hal::cloud::ReadPcd(*source_path);
+  if (!target_cloud.ok() || !source_cloud.ok()) {
+    state.SkipWithError("the HDL-32E PCDs do not read");
+    return;
+  }
+  const maps::range3d::RangeFrameOptions options;
+  localization::registration::SnicpFrame first, next;
+  first.levels.push_back(maps::range3d::FrameFromCloud(*target_cloud, maps::range3d::SensorModel::kHdl32e, options));
+  next.levels.push_back(maps::range3d::FrameFromCloud(*source_cloud, maps::range3d::SensorModel::kHdl32e, options));
+  localization::registration::ModelTrackerOptions tracker_options;
+  const std::vector<std::vector<int>> pyramids{{1}, {8, 4, 2, 1}, {8, 4, 2}};
+  tracker_options.lidar_column_scales = pyramids[static_cast<std::size_t>(state.range(0))];
+  tracker_options.iterations_per_level = state.range(0) == 0 ? 10 : 3;
+  double register_ms = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    localization::registration::ModelTracker tracker(first.levels.front().projection, tracker_options);
+    (void)tracker.Track(first, Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity());
+    state.ResumeTiming();
+    const auto tracked = tracker.Track(next, Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity());
+    register_ms += tracked.register_ms;
+    benchmark::DoNotOptimize(tracked.model_T_camera);
+  }
+  state.counters["register_ms"] = benchmark::Counter(register_ms, benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_TrackerHdl32eRevolution)->ArgName("pyramid")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
