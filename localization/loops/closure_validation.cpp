@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <Eigen/Eigenvalues>
+
 #include "localization/registration/correspondence_finder.hpp"
 #include "localization/registration/nicp.hpp"
 
@@ -45,6 +47,24 @@ registration::RegistrationResult RegisterInRounds(const maps::range3d::SurfelClo
   return result;
 }
 
+// Step 3: another fit as good as `fit`, found from it moved along its weakest direction.
+std::string Ambiguity(const maps::range3d::SurfelCloud& reference, const maps::range3d::SurfelCloud& current,
+                      const registration::RegistrationResult& fit, const ClosureValidationOptions& options) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(fit.information.topLeftCorner<3, 3>());
+  const Eigen::Vector3d weakest = eigen.eigenvectors().col(0);  // ascending eigenvalues
+  for (const double sign : {1.0, -1.0}) {
+    const Eigen::Isometry3d start = Eigen::Translation3d(sign * options.ambiguity_shift_m * weakest) * fit.target_T_source;
+    const registration::RegistrationResult other = RegisterInRounds(reference, current, start, options);
+    if (!other.ok() || !other.target_T_source.matrix().allFinite()) continue;
+    const double apart = (other.target_T_source.translation() - fit.target_T_source.translation()).norm();
+    const double ratio = static_cast<double>(other.inliers) / std::max(fit.inliers, 1);
+    if (apart > options.ambiguity_separation_m && ratio >= options.ambiguity_inlier_ratio) {
+      return Format("ambiguous: another fit %.2f m away with %.2f of the inliers", apart, ratio);
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 ClosureValidation ValidateClosure(const maps::range3d::SurfelCloud& reference, const maps::range3d::SurfelCloud& current,
@@ -69,6 +89,9 @@ ClosureValidation ValidateClosure(const maps::range3d::SurfelCloud& reference, c
     v.reason = Format("chi2 per inlier %.3f above %.3f", v.chi2_per_inlier, options.max_chi2_per_inlier);
   } else if (correction_m > options.max_correction_m || correction_rad > options.max_correction_rad) {
     v.reason = Format("moved %.2f m / %.3f rad from the guess", correction_m, correction_rad);
+  } else if (options.ambiguity_shift_m > 0.0) {
+    v.reason = Ambiguity(reference, current, v.result, options);
+    v.accepted = v.reason.empty();
   } else {
     v.accepted = true;
   }

@@ -12,6 +12,13 @@
 //      - their mean chi2 is at most max_chi2_per_inlier (they lie on each other), and
 //      - NICP moved the map no more than max_correction from T* (the basin: a candidate
 //        that slides along a corridor to some other fit is not the one proposed).
+//   3. Optionally (ambiguity_shift_m above 0), unique: NICP run again from the fit moved by
+//      +-ambiguity_shift_m along its least constrained direction (the smallest eigenvector
+//      of H's translation block) must not settle on another fit, more than
+//      ambiguity_separation_m away, with at least ambiguity_inlier_ratio of the inliers. A
+//      road or corridor without features along it fits anywhere along itself, and two
+//      such fits agree with each other, so the robust kernel cannot tell them from a true
+//      closure.
 // The thesis states no limits; these were chosen on the simulated office and campus drives
 // (docs/benchmarks.md, "Local-map SLAM").
 #pragma once
@@ -33,6 +40,9 @@ struct ClosureValidationOptions {
   double max_chi2_per_inlier = 2.0;
   double max_correction_m = 3.0;
   double max_correction_rad = 0.2;
+  double ambiguity_shift_m = 0.0;  // 0: no uniqueness test (step 3)
+  double ambiguity_separation_m = 1.0;
+  double ambiguity_inlier_ratio = 0.9;
 
   static registration::NicpOptions DefaultNicp() {
     registration::NicpOptions nicp;

@@ -65,6 +65,9 @@ Also:
   --range-merge-weights   merge a local map's points weighted by w = 1/range (thesis Eq. 6.4,
                           6.11-6.12) instead of 1/range^2 (Eq. 5.22; the default, better on
                           the simulated campus: docs/benchmarks.md)
+  --ambiguity-shift M     refuse a closure whose fit NICP also finds, as good, from M metres
+                          along its least constrained direction (a road or corridor fits
+                          anywhere along itself; default 0: no such test; docs/benchmarks.md)
   --no-loops              no loop closing: the chain of local maps alone
   --no-distance-candidates, --no-shape-candidates
                           leave out one kind of candidate
@@ -124,6 +127,7 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--local-map-overlap") a.drive.options.local_map_min_overlap = number();
     else if (arg == "--continuous-tracking") a.drive.options.continuous_tracking = true;
     else if (arg == "--range-merge-weights") a.drive.options.model.weighting = maps::range3d::DepthWeighting::kInverse;
+    else if (arg == "--ambiguity-shift") a.options.validation.ambiguity_shift_m = number();
     else if (arg == "--no-loops") a.options.distance_candidates = a.options.shape_candidates = false;
     else if (arg == "--no-distance-candidates") a.options.distance_candidates = false;
     else if (arg == "--no-shape-candidates") a.options.shape_candidates = false;

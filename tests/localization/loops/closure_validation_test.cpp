@@ -21,12 +21,13 @@ Eigen::Isometry3d Pose(double x, double y, double z, double yaw_deg) {
   return pose;
 }
 
-// A "local map": the office room seen by an HDL-32E at world_T_map, in the map's frame,
-// with statistics over R = 0.3 m as the store reads maps back.
-maps::range3d::SurfelCloud MapAt(const Eigen::Isometry3d& world_T_map) {
+// A "local map": the scene (the office room unless said) seen by an HDL-32E at world_T_map,
+// in the map's frame, with statistics over R = 0.3 m as the store reads maps back.
+maps::range3d::SurfelCloud MapAt(const Eigen::Isometry3d& world_T_map,
+                                 const testing::BoxScene& scene = testing::OfficeRoom()) {
   const maps::range3d::RangeProjection lidar = maps::range3d::LidarProjection(maps::range3d::SensorModel::kHdl32e, 1080);
   maps::range3d::SurfelCloud cloud;
-  const std::vector<Eigen::Vector3f> points = testing::RenderLidar(testing::OfficeRoom(), lidar, world_T_map.cast<float>());
+  const std::vector<Eigen::Vector3f> points = testing::RenderLidar(scene, lidar, world_T_map.cast<float>());
   cloud.Resize(points.size());
   cloud.points = points;
   maps::range3d::SurfaceStatisticsOptions statistics;
@@ -92,6 +93,29 @@ TEST_F(ClosureValidationTest, RejectsMapsThatDoNotOverlap) {
   const ClosureValidation v = ValidateClosure(reference, far, truth, ClosureValidationOptions{});
   EXPECT_FALSE(v.accepted);
   EXPECT_NE(v.reason.find("registration failed"), std::string::npos) << v.reason;
+}
+
+// A corridor 3 m wide and 1 km long, nothing along it: two maps fit anywhere along it.
+testing::BoxScene Corridor() { return {{{-500.0F, -1.5F, 0.0F}, {500.0F, 1.5F, 3.0F}}, {}}; }
+
+// The uniqueness test (step 3) on a candidate that is right but has nothing to hold it along
+// the corridor: the fit from 3 m further along is as good, so it is refused; the office room
+// holds its fit in every direction and passes.
+TEST_F(ClosureValidationTest, TheUniquenessTestRefusesAFitThatSlidesAlongACorridor) {
+  ClosureValidationOptions unique;
+  unique.ambiguity_shift_m = 3.0;
+  const Eigen::Isometry3d a = Pose(0.0, 0.0, 1.2, 0.0), b = Pose(1.0, 0.3, 1.2, 3.0);
+  const Eigen::Isometry3d corridor_truth = a.inverse() * b;
+  const maps::range3d::SurfelCloud corridor_a = MapAt(a, Corridor()), corridor_b = MapAt(b, Corridor());
+  const ClosureValidation plain = ValidateClosure(corridor_a, corridor_b, corridor_truth, ClosureValidationOptions{});
+  ASSERT_TRUE(plain.accepted) << plain.reason;  // the fit itself passes steps 1-2
+  const ClosureValidation v = ValidateClosure(corridor_a, corridor_b, corridor_truth, unique);
+  EXPECT_FALSE(v.accepted);
+  EXPECT_NE(v.reason.find("ambiguous"), std::string::npos) << v.reason;
+
+  const ClosureValidation room = ValidateClosure(reference, current, truth * Pose(0.3, -0.2, 0.0, 2.0), unique);
+  ASSERT_TRUE(room.accepted) << room.reason;
+  EXPECT_LT(Between(truth, room.result.target_T_source).translation_m, 0.02);
 }
 
 }  // namespace
