@@ -58,10 +58,10 @@ Also:
   --continuous-tracking   track against one merged model across the cuts (each local map
                           merges its revolutions into its own model besides) instead of
                           starting each map's tracking afresh (thesis 6.3)
-  --pyramid S,S,...       the tracker's levels, as in build --mode nicp DRIVE (default
-                          8,4,2,1: the thesis' 1/8, 1/4, 1/2 of the columns, then full
-                          resolution, --pyramid-iterations 3 at each; 1: one level at full
-                          resolution, --iterations 10)
+  --pyramid S,S,...       the tracker's levels, as in build --mode nicp DRIVE: 8,4,2 is the
+                          thesis' 1/8, 1/4, 1/2 of the columns (6.3.1), 8,4,2,1 adds the full
+                          image, --pyramid-iterations 3 at each (default 1: one level at full
+                          resolution, --iterations 10; docs/benchmarks.md)
   --range-merge-weights   merge a local map's points weighted by w = 1/range (thesis Eq. 6.4,
                           6.11-6.12) instead of 1/range^2 (Eq. 5.22; the default, better on
                           the simulated campus: docs/benchmarks.md)
@@ -108,15 +108,8 @@ struct Args {
   std::optional<std::string> closures, truth;
 };
 
-// The tracker's pyramid unless --pyramid says otherwise: the thesis' 1/8, 1/4, 1/2 of the
-// columns (6.3.1) and then the full image, 3 iterations at each. On the simulated drives it
-// tracks as well as 10 iterations at full resolution, 10-25 % faster; ending at 1/2 loses
-// half the columns' precision (docs/benchmarks.md, "Cuts and weights").
-const std::vector<int> kCatacombPyramid{8, 4, 2, 1};
-
 Args ParseArgs(int argc, char** argv) {
   Args a;
-  a.drive.options.lidar_pyramid = kCatacombPyramid;
   for (int i = 0; i < argc; ++i) {
     const std::string_view arg = argv[i];
     if (ParseNicpDriveFlag(argc, argv, i, a.drive)) continue;
