@@ -5,7 +5,9 @@
 // outside the timed loop: a camera or a driver hands the frame over decoded.
 #include <benchmark/benchmark.h>
 
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hal/cloud/pcd_file.hpp"
@@ -138,24 +140,34 @@ void BM_NicpIterationParts(benchmark::State& state) {
 }
 BENCHMARK(BM_NicpIterationParts)->ArgName("linear_system")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
-// An HDL-32E revolution (~64k points): its statistics and its registration to the last.
-void BM_NicpHdl32eRevolution(benchmark::State& state) {
+// The HDL-32E pair of ../shared/data (target, source), or nullopt with the benchmark
+// skipped, saying why.
+std::optional<std::pair<hal::cloud::PointCloud, hal::cloud::PointCloud>> LoadHdl32ePair(benchmark::State& state) {
   const auto target_path = flat2d::testing::FindData("lidar3d/hdl32e_fast_gicp_pair/251370668.pcd");
   const auto source_path = flat2d::testing::FindData("lidar3d/hdl32e_fast_gicp_pair/251371071.pcd");
   if (!target_path || !source_path) {
     state.SkipWithError("real data not found: lidar3d/hdl32e_fast_gicp_pair (set FLAT2D_DATA)");
-    return;
+    return std::nullopt;
   }
-  const auto target_cloud = hal::cloud::ReadPcd(*target_path);
-  const auto source_cloud = hal::cloud::ReadPcd(*source_path);
+  auto target_cloud = hal::cloud::ReadPcd(*target_path);
+  auto source_cloud = hal::cloud::ReadPcd(*source_path);
   if (!target_cloud.ok() || !source_cloud.ok()) {
     state.SkipWithError("the HDL-32E PCDs do not read");
-    return;
+    return std::nullopt;
   }
+  return std::make_pair(std::move(*target_cloud), std::move(*source_cloud));
+}
+
+// An HDL-32E revolution (~64k points): its statistics and its registration to the last.
+void BM_NicpHdl32eRevolution(benchmark::State& state) {
+  const auto pair = LoadHdl32ePair(state);
+  if (!pair) return;
+  const hal::cloud::PointCloud& target_cloud = pair->first;
+  const hal::cloud::PointCloud& source_cloud = pair->second;
   const maps::range3d::RangeFrameOptions options;
-  const auto target = maps::range3d::FrameFromCloud(*target_cloud, maps::range3d::SensorModel::kHdl32e, options);
+  const auto target = maps::range3d::FrameFromCloud(target_cloud, maps::range3d::SensorModel::kHdl32e, options);
   for (auto _ : state) {
-    const auto source = maps::range3d::FrameFromCloud(*source_cloud, maps::range3d::SensorModel::kHdl32e, options);
+    const auto source = maps::range3d::FrameFromCloud(source_cloud, maps::range3d::SensorModel::kHdl32e, options);
     const auto r = RegisterFrames(target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, {});
     benchmark::DoNotOptimize(r.result.target_T_source);
   }
@@ -164,26 +176,18 @@ BENCHMARK(BM_NicpHdl32eRevolution)->Unit(benchmark::kMillisecond);
 
 // The local-map tracker's step on an HDL-32E revolution (issue 12): render the model (one
 // revolution) from the last pose, register the next revolution to it and merge it. Arg:
-// the pyramid, 0 one level at full resolution (10 iterations), 1 the catacomb default 1/8,
-// 1/4, 1/2, full (3 each), 2 the thesis' 1/8, 1/4, 1/2 (3 each). The new revolution's
+// the pyramid, 0 one level at full resolution (10 iterations, the default), 1 1/8, 1/4,
+// 1/2, full (3 each), 2 the thesis' 1/8, 1/4, 1/2 (3 each). The new revolution's
 // statistics are left out (the same for all three).
 void BM_TrackerHdl32eRevolution(benchmark::State& state) {
-  const auto target_path = flat2d::testing::FindData("lidar3d/hdl32e_fast_gicp_pair/251370668.pcd");
-  const auto source_path = flat2d::testing::FindData("lidar3d/hdl32e_fast_gicp_pair/251371071.pcd");
-  if (!target_path || !source_path) {
-    state.SkipWithError("real data not found: lidar3d/hdl32e_fast_gicp_pair (set FLAT2D_DATA)");
-    return;
-  }
-  const auto target_cloud = hal::cloud::ReadPcd(*target_path);
-  const auto source_cloud = hal::cloud::ReadPcd(*source_path);
-  if (!target_cloud.ok() || !source_cloud.ok()) {
-    state.SkipWithError("the HDL-32E PCDs do not read");
-    return;
-  }
+  const auto pair = LoadHdl32ePair(state);
+  if (!pair) return;
+  const hal::cloud::PointCloud& target_cloud = pair->first;
+  const hal::cloud::PointCloud& source_cloud = pair->second;
   const maps::range3d::RangeFrameOptions options;
   localization::registration::SnicpFrame first, next;
-  first.levels.push_back(maps::range3d::FrameFromCloud(*target_cloud, maps::range3d::SensorModel::kHdl32e, options));
-  next.levels.push_back(maps::range3d::FrameFromCloud(*source_cloud, maps::range3d::SensorModel::kHdl32e, options));
+  first.levels.push_back(maps::range3d::FrameFromCloud(target_cloud, maps::range3d::SensorModel::kHdl32e, options));
+  next.levels.push_back(maps::range3d::FrameFromCloud(source_cloud, maps::range3d::SensorModel::kHdl32e, options));
   localization::registration::ModelTrackerOptions tracker_options;
   const std::vector<std::vector<int>> pyramids{{1}, {8, 4, 2, 1}, {8, 4, 2}};
   tracker_options.lidar_column_scales = pyramids[static_cast<std::size_t>(state.range(0))];
