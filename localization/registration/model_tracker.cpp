@@ -148,6 +148,7 @@ RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const E
   RegistrationResult result;
   result.target_T_source = reference_T_guess;
   int iterations = 0;
+  const maps::range3d::SurfelCloud* registered = nullptr;  // the last level's source
   const std::size_t levels = full_view_.pinhole() ? std::min(level_views_.size(), frame.levels.size()) : level_views_.size();
   for (std::size_t level = 0; level < levels; ++level) {
     // As RegisterFrames: the normal term's weight is given for R = 0.1 m (nicp_options.hpp).
@@ -155,12 +156,12 @@ RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const E
     const double radius_ratio = static_cast<double>(radius) / kNormalWeightRadiusM;
     nicp.normal_weight = options_.nicp.normal_weight * radius_ratio * radius_ratio;
     ProjectiveCorrespondenceFinder finder(view_, level_views_[level], &level_images_[level]);
-    const maps::range3d::SurfelCloud& source = SourceAt(frame, level);
-    finest_points = PointsWithNormals(source);
-    result = Nicp(nicp).Register(view_, finder, source, result.target_T_source);
+    registered = &SourceAt(frame, level);
+    result = Nicp(nicp).Register(view_, finder, *registered, result.target_T_source);
     iterations += result.iterations;
     if (!result.ok()) break;
   }
+  finest_points = registered != nullptr ? PointsWithNormals(*registered) : 0.0F;
   result.iterations = iterations;
   return result;
 }

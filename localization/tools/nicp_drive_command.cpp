@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -91,19 +92,15 @@ bool IsDrive(std::string_view path) { return IsCapture(path) || hal::cloud::IsKi
 // "8,4,2": column divisors, coarse to fine, each dividing the image's columns.
 std::vector<int> ParsePyramid(std::string_view flag, const std::string& text, int columns) {
   std::vector<int> scales;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = text.find(',', start);
-    const std::string part = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    scales.push_back(static_cast<int>(maps::cli::ParseInteger(kTool, flag, part.c_str(), 1, columns)));
-    if (columns % scales.back() != 0) {
-      Fail(1, std::string(flag) + ": " + part + " does not divide the image's " + std::to_string(columns) + " columns");
+  for (const std::int64_t scale : maps::cli::ParseIntegerList(kTool, flag, text, 1, columns)) {
+    if (columns % scale != 0) {
+      Fail(1, std::string(flag) + ": " + std::to_string(scale) + " does not divide the image's " +
+                  std::to_string(columns) + " columns");
     }
-    if (scales.size() > 1 && scales.back() >= scales[scales.size() - 2]) {
+    if (!scales.empty() && scale >= scales.back()) {
       Fail(1, std::string(flag) + ": the levels go coarse to fine, each divisor smaller than the one before");
     }
-    if (comma == std::string::npos) break;
-    start = comma + 1;
+    scales.push_back(static_cast<int>(scale));
   }
   return scales;
 }

@@ -28,17 +28,26 @@ double ParseNumber(std::string_view tool, std::string_view flag, const char* tex
   return value;
 }
 
+namespace {
+
+// The parts of "a,b,c" (an empty part where two commas meet or at an end).
+std::vector<std::string> SplitCommas(const std::string& text) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    parts.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) return parts;
+    start = comma + 1;
+  }
+}
+
+}  // namespace
+
 std::vector<double> ParseNumberList(std::string_view tool, std::string_view flag, const std::string& text,
                                     std::size_t count) {
   std::vector<double> values;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = text.find(',', start);
-    const std::string part = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    values.push_back(ParseNumber(tool, flag, part.c_str()));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
+  for (const std::string& part : SplitCommas(text)) values.push_back(ParseNumber(tool, flag, part.c_str()));
   if (values.size() != count) {
     Fail(tool, 1, std::string(flag) + " takes " + std::to_string(count) + " comma-separated numbers");
   }
@@ -55,6 +64,13 @@ std::int64_t ParseInteger(std::string_view tool, std::string_view flag, const ch
                       " to " + std::to_string(max) + ", got " + text);
   }
   return value;
+}
+
+std::vector<std::int64_t> ParseIntegerList(std::string_view tool, std::string_view flag, const std::string& text,
+                                           std::int64_t min, std::int64_t max) {
+  std::vector<std::int64_t> values;
+  for (const std::string& part : SplitCommas(text)) values.push_back(ParseInteger(tool, flag, part.c_str(), min, max));
+  return values;
 }
 
 std::uint32_t ParseAddress(std::string_view tool, std::string_view flag, const std::string& text) {

@@ -22,6 +22,9 @@ std::int64_t ParseInteger(std::string_view tool, std::string_view flag, const ch
 // `count` comma-separated numbers ("1.5,-2,0.1"), or Fail(1) naming the flag.
 std::vector<double> ParseNumberList(std::string_view tool, std::string_view flag, const std::string& text,
                                     std::size_t count);
+// Comma-separated integers within [min, max] ("8,4,2"), or Fail(1) naming the flag.
+std::vector<std::int64_t> ParseIntegerList(std::string_view tool, std::string_view flag, const std::string& text,
+                                           std::int64_t min, std::int64_t max);
 std::uint32_t ParseAddress(std::string_view tool, std::string_view flag, const std::string& text);
 
 }  // namespace flat2d::maps::cli
