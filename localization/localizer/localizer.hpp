@@ -30,6 +30,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <numbers>
 #include <optional>
 
 #include <Eigen/Core>
@@ -155,6 +156,7 @@ struct RevolutionReport {
   Eigen::Matrix3d match_covariance = Eigen::Matrix3d::Zero();  // ... as the score surface says
   bool match_accepted = false;   // passed the score threshold and was not switched off
   std::size_t points = 0;        // scan points matched
+  int headings = 0;              // headings the search tried
   double match_s = 0.0;          // CPU time of the match (including a map window move)
   double solve_s = 0.0;          // ... and of the graph solve
 };
@@ -219,7 +221,7 @@ class Localizer {
   void DropPrefetch();
   SearchWindow TrackingWindow(TimeNs time_ns, const PoseHistory& odometry) const;
   bool Accepts(const MatchResult& match) const;
-  void WidenRelocalization();  // the next global search's radius, after a failed or refuted one
+  void WidenRelocalization();  // the next global search's window, after a failed or refuted one
   void Track(TimeNs time_ns, const Se2& local_T_vehicle, const Se2& prediction, const MatchResult& match,
              const PoseHistory& odometry, RevolutionReport& report);
   void Restart(TimeNs time_ns, const Se2& global_T_vehicle, const Eigen::Matrix3d& information);
@@ -260,6 +262,9 @@ class Localizer {
   bool relocalizing_ = false;
   int confirmations_needed_ = 0;  // tracking matches still to accept after a global match
   double relocalization_radius_m_ = 0.0;
+  // Half-width of the global search's headings: an initial pose's 3 sigma (a warm start
+  // knows its heading to 0.2 rad, so it need not try all), pi once lost while tracking.
+  double relocalization_angular_rad_ = std::numbers::pi;
 };
 
 }  // namespace flat2d::localization

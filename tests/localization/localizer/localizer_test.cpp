@@ -243,6 +243,34 @@ TEST_F(LocalizerTest, AWideInitialPoseStartsWithAGlobalSearch) {
   EXPECT_EQ(localizer.stats().relocalizations_refuted, 0u);
 }
 
+// A warm start knows its heading to about 0.2 rad: its global search tries the headings
+// within 3 sigma, not all of them, and still finds the pose (a 1 m, 0.3 rad wrong start).
+TEST_F(LocalizerTest, AWarmStartSearchesOnlyTheHeadingsItsPriorAllows) {
+  const Eigen::Vector3d offset(0.8, -0.6, 0.3);
+  Localizer all_headings = MakeLocalizer();
+  StartAtTruth(all_headings, offset, /*sigma_m=*/2.0, /*sigma_rad=*/1.2);
+  const RevolutionReport global = Step(all_headings, 0);
+  next_odometry_ns_ = 0;
+  history_.Clear();
+
+  Localizer warm = MakeLocalizer();
+  StartAtTruth(warm, offset, /*sigma_m=*/2.0, /*sigma_rad=*/0.2);
+  const RevolutionReport first = Step(warm, 0);
+  ASSERT_TRUE(global.relocalizing && first.relocalizing);
+  EXPECT_TRUE(global.match_accepted);
+  EXPECT_TRUE(first.match_accepted);
+  // Stage 1 tries 2 x 0.6 rad of 2 pi; stage 2's fine headings around the best are the same
+  // for both: under a third of the headings in all.
+  EXPECT_LT(first.headings, global.headings / 3) << first.headings << " of " << global.headings;
+  EXPECT_LT((first.match_pose.translation() - world_.TruthAt(0).translation()).norm(), 0.1);
+  EXPECT_LT(HeadingError(first.match_pose, world_.TruthAt(0)), 0.01);
+  int localized_at = -1;
+  for (int k = 1; k < 10 && localized_at < 0; ++k) {
+    if (Step(warm, k).state == LocalizerState::kLocalized) localized_at = k;
+  }
+  EXPECT_EQ(localized_at, 3) << "three tracking matches confirm the global one";
+}
+
 TEST(LocalizerOptions, RejectsInconsistentValues) {
   LocalizerOptions options;
   EXPECT_TRUE(ValidateOptions(options).ok());
