@@ -26,11 +26,15 @@ from flat2dd_harness import (RUNNING, Daemon, Tools, Truth, Watcher, build_map, 
 FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE, WORK = sys.argv[1:8]
 configure(Tools(FLAT2DD, FLAT2D, SIM, MAP, INSPECT, SOURCE))
 
+# The events fall where the drive itself is localizable: offline (`flat2d-localize` on this
+# drive and map) tracking rejects matches at 29.4-30.2 s (DEGRADED on a slow revolution),
+# 94.4-99.3 s and 115.7-120.6 s (open road, DEGRADED). A flood or a warm start there would
+# be judged on the road, not on the service.
 SPEED = 2            # the replay's rate; the daemon keeps up on one core (see docs/benchmarks.md)
 OUTAGE_FROM_S = 60   # capture seconds: the LiDAR is silent from here ...
 OUTAGE_S = 5         # ... for this long, while the CAN log runs on
-FLOOD_AT_S = 30      # capture seconds: malformed datagrams and requests
-KILL_AT_S = 90       # capture seconds: kill -9, then a warm start
+FLOOD_AT_S = 20      # capture seconds: malformed datagrams and requests
+KILL_AT_S = 80       # capture seconds: kill -9, then a warm start
 
 # Accuracy on the campus (the localizer's targets, DESIGN.md): heading within 0.02 rad for
 # 99 % of LOCALIZED poses. Position: with its scale from the survey GNSS the campus map is
