@@ -65,6 +65,7 @@ Args ParseArgs(int argc, char** argv) {
   if (a.drive.options.local_map_angle_rad < 0.0) Fail(1, "build --mode catacomb: --local-map-angle is >= 0");
   const double overlap = a.drive.options.local_map_min_overlap;
   if (!(overlap >= 0.0 && overlap <= 1.0)) Fail(1, "build --mode catacomb: --local-map-overlap is a share in [0, 1]");
+  if (a.options.validation.ambiguity_shift_m < 0.0) Fail(1, "build --mode catacomb: --ambiguity-shift is >= 0 (0: no test)");
   if (a.options.injected_false_share < 0.0 || a.options.injected_false_share >= 1.0) {
     Fail(1, "build --mode catacomb: --inject-false is a share in [0, 1)");
   }

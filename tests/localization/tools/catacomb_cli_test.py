@@ -137,8 +137,11 @@ class Catacomb(unittest.TestCase):
         g = json.loads(angle.stdout)
         self.assertGreater(g["cuts_angle"], 0)
         self.assertGreater(g["local_maps"], p["local_maps"])
-        for flag, value in (("--local-map-overlap", "1.5"), ("--local-map-overlap", "-0.1"), ("--local-map-angle", "-1")):
-            self.assertEqual(run(MAP, *base, flag, value, "--out", os.path.join(WORK, "cuts_bad")).returncode, 1, flag)
+        for flag, value in (("--local-map-overlap", "1.5"), ("--local-map-overlap", "-0.1"), ("--local-map-angle", "-1"),
+                            ("--ambiguity-shift", "-3")):
+            bad = run(MAP, *base, flag, value, "--out", os.path.join(WORK, "cuts_bad"))
+            self.assertEqual(bad.returncode, 1, flag)
+            self.assertIn(flag, bad.stderr)
 
     def test_pyramid(self):
         """The tracker's pyramid of columns (thesis 6.3.1, then the full image) tracks the first 20
