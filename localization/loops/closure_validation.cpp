@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include <Eigen/Eigenvalues>
 
@@ -65,7 +66,31 @@ std::string Ambiguity(const maps::range3d::SurfelCloud& reference, const maps::r
   return {};
 }
 
+double InlierShare(const maps::range3d::SurfelCloud& a, const maps::range3d::SurfelCloud& b, int inliers) {
+  const std::size_t smaller = std::min(PointsWithNormals(a), PointsWithNormals(b));
+  return smaller > 0 ? static_cast<double>(inliers) / static_cast<double>(smaller) : 0.0;
+}
+
 }  // namespace
+
+std::string FindAlias(const maps::range3d::SurfelCloud& current, const ClosureValidation& fit,
+                      std::span<const AliasNeighbour> neighbours, const ClosureValidationOptions& options) {
+  const Eigen::Isometry3d& reference_T_current = fit.result.target_T_source;
+  for (const AliasNeighbour& neighbour : neighbours) {
+    const registration::RegistrationResult other =
+        RegisterInRounds(*neighbour.map, current, reference_T_current, options);
+    if (!other.ok() || !other.target_T_source.matrix().allFinite() || other.inliers <= 0) continue;
+    const Eigen::Isometry3d elsewhere = neighbour.reference_T_neighbour * other.target_T_source;
+    const double apart = (elsewhere.translation() - reference_T_current.translation()).norm();
+    const double ratio = InlierShare(*neighbour.map, current, other.inliers) / std::max(fit.inlier_share, 1e-12);
+    const double chi2 = other.chi2 / other.inliers;
+    if (apart > options.ambiguity_separation_m && ratio >= options.ambiguity_inlier_ratio &&
+        chi2 <= options.max_chi2_per_inlier) {
+      return "aliased: map " + std::to_string(neighbour.index) + Format(" fits as well, %.2f m away (%.2f of the inliers)", apart, ratio);
+    }
+  }
+  return {};
+}
 
 ClosureValidation ValidateClosure(const maps::range3d::SurfelCloud& reference, const maps::range3d::SurfelCloud& current,
                                   const Eigen::Isometry3d& guess, const ClosureValidationOptions& options) {
@@ -75,8 +100,7 @@ ClosureValidation ValidateClosure(const maps::range3d::SurfelCloud& reference, c
     v.reason = std::string("registration failed: ") + registration::FailureName(v.result.failure);
     return v;
   }
-  const std::size_t smaller = std::min(PointsWithNormals(reference), PointsWithNormals(current));
-  v.inlier_share = smaller > 0 ? static_cast<double>(v.result.inliers) / static_cast<double>(smaller) : 0.0;
+  v.inlier_share = InlierShare(reference, current, v.result.inliers);
   v.chi2_per_inlier = v.result.inliers > 0 ? v.result.chi2 / v.result.inliers : 0.0;
   const Eigen::Isometry3d correction = guess.inverse() * v.result.target_T_source;
   const double correction_m = correction.translation().norm();

@@ -23,6 +23,7 @@
 // (docs/benchmarks.md, "Local-map SLAM").
 #pragma once
 
+#include <span>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -60,6 +61,24 @@ struct ClosureValidation {
   double inlier_share = 0.0;
   double chi2_per_inlier = 0.0;
 };
+
+// A past map near the reference along the trajectory, for FindAlias: its points and its
+// pose in the reference map's frame (from the chain).
+struct AliasNeighbour {
+  int index = 0;
+  const maps::range3d::SurfelCloud* map = nullptr;
+  Eigen::Isometry3d reference_T_neighbour = Eigen::Isometry3d::Identity();
+};
+
+// Place recognition must be unique among nearby places: a road whose look repeats (trees and
+// buildings at a regular spacing) lets the current map fit a past map as well as the one it
+// truly overlaps, a whole map or more away, where no shift of one fit reaches (step 3
+// cannot see it). The current map is put on each neighbour as the fit put it on the
+// reference; if NICP settles there, more than ambiguity_separation_m from the fit, with
+// at least ambiguity_inlier_ratio of the fit's inlier share, the place is aliased.
+// Returns the reason, or empty when the fit is the only one.
+std::string FindAlias(const maps::range3d::SurfelCloud& current, const ClosureValidation& fit,
+                      std::span<const AliasNeighbour> neighbours, const ClosureValidationOptions& options);
 
 // `reference` and `current`: the two maps' points with their statistics, each in its own
 // map frame; `guess`: reference_T_current from the candidate.

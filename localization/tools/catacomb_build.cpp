@@ -200,10 +200,39 @@ class CatacombBuilder {
     record.candidate = candidate;
     record.injected = injected;
     record.validation = loops::ValidateClosure(**reference, **current, candidate.reference_T_current, options_.validation);
+    if (record.validation.accepted && options_.alias_neighbours > 0) {
+      auto alias = FindAlias(candidate, record.validation);
+      if (!alias.ok()) return alias.error();
+      record.validation.reason = std::move(*alias);
+      record.validation.accepted = record.validation.reason.empty();
+    }
     const double seconds = SecondsSince(start);
     validation_seconds_ += seconds;
     result_.validation_ms.push_back(1e3 * seconds);
     return record;
+  }
+
+  // The current map tried on the reference's neighbours, nearest first, one read at a time:
+  // the cache never evicts the newest map, and the reference is not needed again.
+  Result<std::string> FindAlias(const loops::LoopCandidate& candidate, const loops::ClosureValidation& fit) {
+    const auto& maps = result_.maps;
+    const auto& reference = maps[static_cast<std::size_t>(candidate.reference)];
+    const auto& current = maps[static_cast<std::size_t>(candidate.current)];
+    for (int step = 1; step <= options_.alias_neighbours; ++step) {
+      for (const int k : {candidate.reference - step, candidate.reference + step}) {
+        if (k < 0 || k >= candidate.current) continue;
+        const auto& neighbour = maps[static_cast<std::size_t>(k)];
+        if (current.path_start_m - neighbour.path_start_m < options_.candidates.min_path_separation_m) continue;
+        auto neighbour_points = cache_.Get(k);
+        if (!neighbour_points.ok()) return neighbour_points.error();
+        auto current_points = cache_.Get(candidate.current);
+        if (!current_points.ok()) return current_points.error();
+        const loops::AliasNeighbour probe{k, *neighbour_points, reference.world_T_map.inverse() * neighbour.world_T_map};
+        std::string reason = loops::FindAlias(**current_points, fit, {&probe, 1}, options_.validation);
+        if (!reason.empty()) return reason;
+      }
+    }
+    return std::string();
   }
 
   // Injected false candidates: enough that they make injected_false_share of all tried.

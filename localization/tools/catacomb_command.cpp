@@ -51,6 +51,7 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--continuous-tracking") a.drive.options.continuous_tracking = true;
     else if (arg == "--range-merge-weights") a.drive.options.model.weighting = maps::range3d::DepthWeighting::kInverse;
     else if (arg == "--ambiguity-shift") a.options.validation.ambiguity_shift_m = number();
+    else if (arg == "--alias-neighbours") a.options.alias_neighbours = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 0, 100));
     else if (arg == "--no-loops") a.options.distance_candidates = a.options.shape_candidates = false;
     else if (arg == "--no-distance-candidates") a.options.distance_candidates = false;
     else if (arg == "--no-shape-candidates") a.options.shape_candidates = false;

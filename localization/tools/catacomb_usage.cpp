@@ -46,6 +46,9 @@ Also:
   --ambiguity-shift M     refuse a closure whose fit NICP also finds, as good, from M metres
                           along its least constrained direction (a road or corridor fits
                           anywhere along itself; default 0: no such test; docs/benchmarks.md)
+  --alias-neighbours N    refuse a closure when the current map fits one of the N past maps on
+                          each side of its reference (along the trajectory) as well, somewhere
+                          else: a place whose look repeats (default 0: no such test)
   --no-loops              no loop closing: the chain of local maps alone
   --no-distance-candidates, --no-shape-candidates
                           leave out one kind of candidate

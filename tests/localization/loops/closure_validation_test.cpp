@@ -118,5 +118,40 @@ TEST_F(ClosureValidationTest, TheUniquenessTestRefusesAFitThatSlidesAlongACorrid
   EXPECT_LT(Between(truth, room.result.target_T_source).translation_m, 0.02);
 }
 
+// A street 8 m wide between walls, with a pillar on each side every 10 m: every stretch of
+// it looks like the next.
+testing::BoxScene PeriodicStreet() {
+  testing::BoxScene street{{{-500.0F, -4.0F, 0.0F}, {500.0F, 4.0F, 4.0F}}, {}};
+  for (int k = -50; k <= 50; ++k) {
+    const float x = 10.0F * static_cast<float>(k);
+    street.furniture.push_back({{x - 0.3F, 3.0F, 0.0F}, {x + 0.3F, 3.6F, 4.0F}});
+    street.furniture.push_back({{x - 0.3F, -3.6F, 0.0F}, {x + 0.3F, -3.0F, 4.0F}});
+  }
+  return street;
+}
+
+// The alias test: on the periodic street the current map fits the reference's neighbours,
+// 10 m on, as well as the reference itself, and the closure is refused; in the office room
+// the current map put on a neighbour as on the reference comes back to the same place.
+TEST_F(ClosureValidationTest, TheAliasTestRefusesAPlaceWhoseLookRepeats) {
+  const Eigen::Isometry3d a = Pose(2.0, 0.0, 1.2, 0.0), b = Pose(3.0, 0.3, 1.2, 3.0);
+  const maps::range3d::SurfelCloud street_a = MapAt(a, PeriodicStreet()), street_b = MapAt(b, PeriodicStreet());
+  const ClosureValidation fit = ValidateClosure(street_a, street_b, a.inverse() * b, ClosureValidationOptions{});
+  ASSERT_TRUE(fit.accepted) << fit.reason;
+  EXPECT_LT(Between(a.inverse() * b, fit.result.target_T_source).translation_m, 0.05);
+  const Eigen::Isometry3d n = Pose(12.0, 0.0, 1.2, 0.0);
+  const maps::range3d::SurfelCloud street_n = MapAt(n, PeriodicStreet());
+  const AliasNeighbour street_neighbour{7, &street_n, a.inverse() * n};
+  const std::string alias = FindAlias(street_b, fit, {&street_neighbour, 1}, ClosureValidationOptions{});
+  EXPECT_NE(alias.find("aliased: map 7"), std::string::npos) << alias;
+
+  const ClosureValidation room = ValidateClosure(reference, current, truth, ClosureValidationOptions{});
+  ASSERT_TRUE(room.accepted) << room.reason;
+  const Eigen::Isometry3d m = Pose(3.5, 1.5, 1.2, -20.0);
+  const maps::range3d::SurfelCloud room_m = MapAt(m);
+  const AliasNeighbour room_neighbour{3, &room_m, world_T_reference.inverse() * m};
+  EXPECT_EQ(FindAlias(current, room, {&room_neighbour, 1}, ClosureValidationOptions{}), "");
+}
+
 }  // namespace
 }  // namespace flat2d::localization::loops
