@@ -61,9 +61,10 @@ struct CatacombOptions {
   loops::LoopCandidateOptions candidates = DefaultCandidates();
   loops::ClosureValidationOptions validation;
   // Past maps on each side of an accepted closure's reference, along the trajectory, that the
-  // current map is also tried on (loops::FindAlias); 0: none. One each side (5 m) is enough
-  // on the simulated drives: the broken campus keeps no false closure (docs/benchmarks.md).
-  int alias_neighbours = 1;
+  // current map is also tried on (loops::FindAlias); 0: none. Off by default: with 1 the
+  // broken campus keeps no false closure, but the unbroken campus keeps 3 closures of 10 and
+  // its map is worse than tracking alone (docs/benchmarks.md, "An alias test for closures").
+  int alias_neighbours = 0;
   loops::RobustClosureOptions robust;
   // The tracking between consecutive maps: 5 m of merged-model tracking drifts about
   // 0.01-0.1 % in the plane (docs/benchmarks.md), a few mm; the sigmas allow for the

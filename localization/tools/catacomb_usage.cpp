@@ -48,7 +48,8 @@ Also:
                           anywhere along itself; default 0: no such test; docs/benchmarks.md)
   --alias-neighbours N    refuse a closure when the current map fits one of the N past maps on
                           each side of its reference (along the trajectory) as well, somewhere
-                          else: a place whose look repeats (default 1; 0: no such test)
+                          else: a place whose look repeats (default 0: no such test;
+                          docs/benchmarks.md)
   --no-loops              no loop closing: the chain of local maps alone
   --no-distance-candidates, --no-shape-candidates
                           leave out one kind of candidate
