@@ -77,6 +77,10 @@ class InputQueue {
   // Wakes a consumer waiting in PopNext without an item (it returns true, having called nothing).
   void Wake() { available_.release(); }
 
+  // Producer: whether a datagram pushed now would find a slot (the ring has one producer, so
+  // the answer holds until it pushes).
+  bool HasDatagramRoom() const { return datagrams_.size() < datagrams_.capacity(); }
+
   const InputQueueStats& stats() const { return stats_; }
   std::size_t queued() const { return datagrams_.size() + frames_.size(); }
 

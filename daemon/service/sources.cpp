@@ -41,7 +41,10 @@ class UdpLidarThread final : public SourceThread {
   std::atomic<std::uint64_t> drops_{0};
 };
 
-// Sleeps in steps of at most kPollMs so the heartbeat keeps beating through long gaps.
+// Sleeps in steps of at most kPollMs so the heartbeat keeps beating through long gaps. A
+// capture is not a sensor: when the localization thread falls behind and the ring is full,
+// the replay waits for room instead of dropping, then catches up with the recorded pace.
+// A replay loses nothing, whatever else shares the CPU.
 class CaptureReplayThread final : public SourceThread {
  public:
   CaptureReplayThread(std::unique_ptr<hal::net::DatagramSource> capture, double rate)
@@ -60,6 +63,10 @@ class CaptureReplayThread final : public SourceThread {
       while (!stop.stop_requested() && Clock::now() < due) {
         Beat();
         std::this_thread::sleep_until(std::min(due, Clock::now() + std::chrono::milliseconds(kPollMs)));
+      }
+      while (!stop.stop_requested() && !queue.HasDatagramRoom()) {
+        Beat();
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
       }
       queue.PushDatagram(*datagram);
     }

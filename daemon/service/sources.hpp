@@ -1,8 +1,10 @@
 // The source threads (DESIGN.md "Threads": packet ingest, CAN): each reads one sensor and
-// pushes into the localization thread's input queue, never waiting on it.
+// pushes into the localization thread's input queue. A live source never waits on it (a
+// full ring drops and counts); a capture replay waits for room and loses nothing.
 //
 // LiDAR: live UDP (udp_receiver.hpp: recvmmsg, kernel receive times, SO_RCVBUF sized for a
-// stall of the consumer) or a capture file replayed at its recorded pace times `rate`.
+// stall of the consumer) or a capture file replayed at its recorded pace times `rate`
+// (slower while the consumer is behind).
 // CAN: a SocketCAN interface (socketcan_source.hpp: kernel receive times). A candump log is
 // not a thread of its own: it follows the LiDAR's clock inside the localization thread
 // (can_log_follower.hpp). Each thread's heartbeat advances at least every 100 ms while it
