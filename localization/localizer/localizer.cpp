@@ -166,8 +166,9 @@ void Localizer::StartFromInitialPose(TimeNs time_ns, const Se2& local_T_vehicle,
   const double sigma_m = PositionSigma(covariance);
   const double sigma_rad = std::sqrt(covariance(2, 2));
   relocalizing_ = 3.0 * sigma_m > options_.tracking_window.linear || 3.0 * sigma_rad > options_.tracking_window.angular;
-  relocalization_radius_m_ = std::clamp(3.0 * sigma_m, options_.tracking_window.linear, options_.relocalization_max_radius_m);
-  relocalization_angular_rad_ = std::clamp(3.0 * sigma_rad, options_.tracking_window.angular, std::numbers::pi);
+  relocalization_window_ = {
+      std::clamp(3.0 * sigma_m, options_.tracking_window.linear, options_.relocalization_max_radius_m),
+      std::clamp(3.0 * sigma_rad, options_.tracking_window.angular, std::numbers::pi)};
   state_ = relocalizing_ ? LocalizerState::kLost : LocalizerState::kInitializing;
 }
 
@@ -229,7 +230,7 @@ MatchResult Localizer::MatchScan(const Se2& prediction, TimeNs time_ns, const Po
   if (*moved) ++stats_.map_window_moves;
   if (relocalizing_) {
     ++stats_.relocalizations;
-    result = matcher_.Relocalize(scan_.points(), prediction, {relocalization_radius_m_, relocalization_angular_rad_},
+    result = matcher_.Relocalize(scan_.points(), prediction, relocalization_window_,
                                  options_.relocalization);
   } else {
     result = matcher_.Match(scan_.points(), prediction, TrackingWindow(time_ns, odometry));
@@ -282,9 +283,9 @@ void Localizer::DropPrefetch() {
 }
 
 void Localizer::WidenRelocalization() {
-  relocalization_radius_m_ =
-      std::min(relocalization_radius_m_ * options_.relocalization_growth, options_.relocalization_max_radius_m);
-  relocalization_angular_rad_ = std::min(relocalization_angular_rad_ * options_.relocalization_growth, std::numbers::pi);
+  SearchWindow& w = relocalization_window_;
+  w.linear = std::min(w.linear * options_.relocalization_growth, options_.relocalization_max_radius_m);
+  w.angular = std::min(w.angular * options_.relocalization_growth, std::numbers::pi);
 }
 
 bool Localizer::Accepts(const MatchResult& match) const {
@@ -410,11 +411,10 @@ void Localizer::UpdateState(TimeNs time_ns, double position_sigma_m) {
     // Lost after tracking, the vehicle is where odometry says within its uncertainty: search
     // three standard deviations, not the whole radius a doubtful initial pose gets, so a
     // lookalike farther away cannot win.
-    relocalization_angular_rad_ = std::numbers::pi;
-    relocalization_radius_m_ =
-        ever_localized_ ? std::clamp(3.0 * position_sigma_m, options_.max_tracking_window_m,
-                                     options_.relocalization_radius_m)
-                        : options_.relocalization_radius_m;
+    const double radius_m = ever_localized_ ? std::clamp(3.0 * position_sigma_m, options_.max_tracking_window_m,
+                                                         options_.relocalization_radius_m)
+                                            : options_.relocalization_radius_m;
+    relocalization_window_ = {radius_m, std::numbers::pi};
   } else if (since_match > options_.degraded_after_ns) {
     state_ = ever_localized_ ? LocalizerState::kDegraded : LocalizerState::kInitializing;
   } else {

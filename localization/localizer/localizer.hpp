@@ -261,10 +261,9 @@ class Localizer {
   bool ever_localized_ = false;  // a match was accepted since the last initial pose
   bool relocalizing_ = false;
   int confirmations_needed_ = 0;  // tracking matches still to accept after a global match
-  double relocalization_radius_m_ = 0.0;
-  // Half-width of the global search's headings: an initial pose's 3 sigma (a warm start
-  // knows its heading to 0.2 rad, so it need not try all), pi once lost while tracking.
-  double relocalization_angular_rad_ = std::numbers::pi;
+  // The next global search: its radius, and its headings, an initial pose's 3 sigma (a warm
+  // start knows its heading to 0.2 rad, so it need not try all), pi once lost while tracking.
+  SearchWindow relocalization_window_{0.0, std::numbers::pi};
 };
 
 }  // namespace flat2d::localization

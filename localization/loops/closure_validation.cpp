@@ -74,22 +74,20 @@ double InlierShare(const maps::range3d::SurfelCloud& a, const maps::range3d::Sur
 }  // namespace
 
 std::string FindAlias(const maps::range3d::SurfelCloud& current, const ClosureValidation& fit,
-                      std::span<const AliasNeighbour> neighbours, const ClosureValidationOptions& options) {
+                      const AliasNeighbour& neighbour, const ClosureValidationOptions& options) {
   const Eigen::Isometry3d& reference_T_current = fit.result.target_T_source;
-  for (const AliasNeighbour& neighbour : neighbours) {
-    const registration::RegistrationResult other =
-        RegisterInRounds(*neighbour.map, current, reference_T_current, options);
-    if (!other.ok() || !other.target_T_source.matrix().allFinite() || other.inliers <= 0) continue;
-    const Eigen::Isometry3d elsewhere = neighbour.reference_T_neighbour * other.target_T_source;
-    const double apart = (elsewhere.translation() - reference_T_current.translation()).norm();
-    const double ratio = InlierShare(*neighbour.map, current, other.inliers) / std::max(fit.inlier_share, 1e-12);
-    const double chi2 = other.chi2 / other.inliers;
-    if (apart > options.ambiguity_separation_m && ratio >= options.ambiguity_inlier_ratio &&
-        chi2 <= options.max_chi2_per_inlier) {
-      return "aliased: map " + std::to_string(neighbour.index) + Format(" fits as well, %.2f m away (%.2f of the inliers)", apart, ratio);
-    }
+  const registration::RegistrationResult other = RegisterInRounds(*neighbour.map, current, reference_T_current, options);
+  if (!other.ok() || !other.target_T_source.matrix().allFinite() || other.inliers <= 0) return {};
+  const Eigen::Isometry3d elsewhere = neighbour.reference_T_neighbour * other.target_T_source;
+  const double apart = (elsewhere.translation() - reference_T_current.translation()).norm();
+  const double ratio = InlierShare(*neighbour.map, current, other.inliers) / std::max(fit.inlier_share, 1e-12);
+  const double chi2 = other.chi2 / other.inliers;
+  if (apart <= options.ambiguity_separation_m || ratio < options.ambiguity_inlier_ratio ||
+      chi2 > options.max_chi2_per_inlier) {
+    return {};
   }
-  return {};
+  return "aliased: map " + std::to_string(neighbour.index) +
+         Format(" fits as well, %.2f m away (%.2f of the inliers)", apart, ratio);
 }
 
 ClosureValidation ValidateClosure(const maps::range3d::SurfelCloud& reference, const maps::range3d::SurfelCloud& current,

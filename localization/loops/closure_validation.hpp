@@ -23,7 +23,6 @@
 // (docs/benchmarks.md, "Local-map SLAM").
 #pragma once
 
-#include <span>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -73,12 +72,12 @@ struct AliasNeighbour {
 // Place recognition must be unique among nearby places: a road whose look repeats (trees and
 // buildings at a regular spacing) lets the current map fit a past map as well as the one it
 // truly overlaps, a whole map or more away, where no shift of one fit reaches (step 3
-// cannot see it). The current map is put on each neighbour as the fit put it on the
+// cannot see it). The current map is put on the neighbour as the fit put it on the
 // reference; if NICP settles there, more than ambiguity_separation_m from the fit, with
 // at least ambiguity_inlier_ratio of the fit's inlier share, the place is aliased.
-// Returns the reason, or empty when the fit is the only one.
+// Returns the reason, or empty when the neighbour offers no other fit.
 std::string FindAlias(const maps::range3d::SurfelCloud& current, const ClosureValidation& fit,
-                      std::span<const AliasNeighbour> neighbours, const ClosureValidationOptions& options);
+                      const AliasNeighbour& neighbour, const ClosureValidationOptions& options);
 
 // `reference` and `current`: the two maps' points with their statistics, each in its own
 // map frame; `guess`: reference_T_current from the candidate.

@@ -227,8 +227,9 @@ class CatacombBuilder {
         if (!neighbour_points.ok()) return neighbour_points.error();
         auto current_points = cache_.Get(candidate.current);
         if (!current_points.ok()) return current_points.error();
-        const loops::AliasNeighbour probe{k, *neighbour_points, reference.world_T_map.inverse() * neighbour.world_T_map};
-        std::string reason = loops::FindAlias(**current_points, fit, {&probe, 1}, options_.validation);
+        const loops::AliasNeighbour probe{k, *neighbour_points,
+                                          reference.world_T_map.inverse() * neighbour.world_T_map};
+        std::string reason = loops::FindAlias(**current_points, fit, probe, options_.validation);
         if (!reason.empty()) return reason;
       }
     }

@@ -45,20 +45,23 @@ Args ParseArgs(int argc, char** argv) {
     if (ParseNicpDriveFlag(argc, argv, i, a.drive)) continue;
     auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     auto number = [&] { return maps::cli::ParseNumber(kTool, arg, value()); };
+    auto integer = [&](int low, int high) {
+      return static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), low, high));
+    };
     if (arg == "--local-map-distance") a.drive.options.local_map_distance_m = number();
     else if (arg == "--local-map-angle") a.drive.options.local_map_angle_rad = number();
     else if (arg == "--local-map-overlap") a.drive.options.local_map_min_overlap = number();
     else if (arg == "--continuous-tracking") a.drive.options.continuous_tracking = true;
     else if (arg == "--range-merge-weights") a.drive.options.model.weighting = maps::range3d::DepthWeighting::kInverse;
     else if (arg == "--ambiguity-shift") a.options.validation.ambiguity_shift_m = number();
-    else if (arg == "--alias-neighbours") a.options.alias_neighbours = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 0, 100));
+    else if (arg == "--alias-neighbours") a.options.alias_neighbours = integer(0, 100);
     else if (arg == "--no-loops") a.options.distance_candidates = a.options.shape_candidates = false;
     else if (arg == "--no-distance-candidates") a.options.distance_candidates = false;
     else if (arg == "--no-shape-candidates") a.options.shape_candidates = false;
     else if (arg == "--closures") a.closures = value();
     else if (arg == "--inject-false") a.options.injected_false_share = number();
     else if (arg == "--truth") a.truth = value();
-    else if (arg == "--break-chain") a.options.break_at_map = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1 << 30));
+    else if (arg == "--break-chain") a.options.break_at_map = integer(1, 1 << 30);
     else Fail(1, "build --mode catacomb DRIVE: unknown argument " + std::string(arg) + "\n" + kCatacombUsage);
   }
   CheckNicpDriveArgs(a.drive, "catacomb", kCatacombUsage);

@@ -142,7 +142,7 @@ TEST_F(ClosureValidationTest, TheAliasTestRefusesAPlaceWhoseLookRepeats) {
   const Eigen::Isometry3d n = Pose(12.0, 0.0, 1.2, 0.0);
   const maps::range3d::SurfelCloud street_n = MapAt(n, PeriodicStreet());
   const AliasNeighbour street_neighbour{7, &street_n, a.inverse() * n};
-  const std::string alias = FindAlias(street_b, fit, {&street_neighbour, 1}, ClosureValidationOptions{});
+  const std::string alias = FindAlias(street_b, fit, street_neighbour, ClosureValidationOptions{});
   EXPECT_NE(alias.find("aliased: map 7"), std::string::npos) << alias;
 
   const ClosureValidation room = ValidateClosure(reference, current, truth, ClosureValidationOptions{});
@@ -150,7 +150,7 @@ TEST_F(ClosureValidationTest, TheAliasTestRefusesAPlaceWhoseLookRepeats) {
   const Eigen::Isometry3d m = Pose(3.5, 1.5, 1.2, -20.0);
   const maps::range3d::SurfelCloud room_m = MapAt(m);
   const AliasNeighbour room_neighbour{3, &room_m, world_T_reference.inverse() * m};
-  EXPECT_EQ(FindAlias(current, room, {&room_neighbour, 1}, ClosureValidationOptions{}), "");
+  EXPECT_EQ(FindAlias(current, room, room_neighbour, ClosureValidationOptions{}), "");
 }
 
 }  // namespace
