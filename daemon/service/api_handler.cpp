@@ -1,12 +1,13 @@
 #include "daemon/service/api_handler.hpp"
 
+#include "hal/common/time.hpp"
+
 #include <cmath>
 
 namespace flat2d::daemon {
 namespace {
 
 namespace v1 = api::v1;
-constexpr double kNsToS = 1e-9;
 
 v1::LocalizerState ToApi(localization::LocalizerState state) {
   switch (state) {
@@ -36,12 +37,12 @@ void FillPose(const ServedPose& served, v1::PoseReply& reply) {
   reply.mutable_covariance()->Resize(9, 0.0);
   for (int i = 0; i < 9; ++i) reply.set_covariance(i, pose.covariance(i / 3, i % 3));
   reply.set_since_accepted_match_s(fix.last_accepted_ns > 0
-                                       ? static_cast<double>(pose.time_ns - fix.last_accepted_ns) * kNsToS
+                                       ? static_cast<double>(pose.time_ns - fix.last_accepted_ns) * kSecondsPerNs
                                        : -1.0);
 }
 
 double AgeS(TimeNs now_ns, TimeNs newest_ns) {
-  return newest_ns > 0 ? static_cast<double>(now_ns - newest_ns) * kNsToS : -1.0;
+  return newest_ns > 0 ? static_cast<double>(now_ns - newest_ns) * kSecondsPerNs : -1.0;
 }
 
 }  // namespace
@@ -91,7 +92,7 @@ void ApiHandler::HandlePoseAt(const v1::PoseAtRequest& request, v1::Response& re
     } else {
       SetError(response, v1::Error::OUT_OF_WINDOW,
                "time " + std::to_string(request.time_ns()) + " is " +
-                   std::to_string(static_cast<double>(odometry.outside_by_ns) * kNsToS) + " s " + where +
+                   std::to_string(static_cast<double>(odometry.outside_by_ns) * kSecondsPerNs) + " s " + where +
                    " the odometry window");
     }
     return;

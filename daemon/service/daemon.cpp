@@ -14,13 +14,13 @@
 
 #include "daemon/service/pose_store.hpp"
 #include "hal/can/candump_log.hpp"
+#include "hal/common/time.hpp"
 #include "hal/net/ipv4.hpp"
 
 namespace flat2d::daemon {
 namespace {
 
 constexpr int kTickMs = 250;
-constexpr double kNsToS = 1e-9;
 
 TimeNs ClockNs(clockid_t clock) {
   timespec now{};
@@ -243,7 +243,7 @@ void Daemon::Tick() {
   const InputQueueStats& stats = queue_->stats();
   const std::uint64_t datagrams = stats.datagrams.load();
   const std::uint64_t frames = board_->health().can_frames;
-  const double elapsed_s = static_cast<double>(now_ns - rates_->last_ns) * kNsToS;
+  const double elapsed_s = static_cast<double>(now_ns - rates_->last_ns) * kSecondsPerNs;
   if (elapsed_s >= 1.0) {
     rates_->lidar_hz = static_cast<double>(datagrams - rates_->last_datagrams) / elapsed_s;
     rates_->can_hz = static_cast<double>(frames - rates_->last_frames) / elapsed_s;
@@ -252,7 +252,7 @@ void Daemon::Tick() {
     rates_->last_ns = now_ns;
     systemd_.Status(StatusLine());
   }
-  if (static_cast<double>(now_ns - last_persist_ns_) * kNsToS >= config_.persistence().period_s()) {
+  if (static_cast<double>(now_ns - last_persist_ns_) * kSecondsPerNs >= config_.persistence().period_s()) {
     last_persist_ns_ = now_ns;
     PersistPose();
   }
@@ -333,7 +333,7 @@ ServiceFigures Daemon::Figures() const {
   figures.clients = server_ ? server_->stats().clients.load() : 0;
   figures.malformed_requests = server_ ? server_->stats().malformed_requests.load() : 0;
   figures.rss_bytes = ResidentBytes();
-  figures.uptime_s = static_cast<double>(MonotonicNs() - started_ns_) * kNsToS;
+  figures.uptime_s = static_cast<double>(MonotonicNs() - started_ns_) * kSecondsPerNs;
   figures.now_ns = ClockNs(CLOCK_REALTIME);
   figures.gpio = gpio_->Health(figures.now_ns);
   const std::lock_guard lock(error_mutex_);

@@ -19,6 +19,7 @@ inline constexpr std::size_t kMaxFdDataBytes = 64;
 inline constexpr std::uint32_t kMaxStandardId = 0x7FF;
 inline constexpr std::uint32_t kMaxExtendedId = 0x1FFFFFFF;
 inline constexpr std::size_t kMaxInterfaceName = 16;  // IFNAMSIZ, including the NUL
+inline constexpr std::uint32_t kCanErrorFlag = 0x20000000;  // CAN_ERR_FLAG (linux/can.h)
 
 struct CanFrame {
   TimeNs time_ns = 0;          // receive time: kernel stamp (Unix epoch) or the log's clock

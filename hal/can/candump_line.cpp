@@ -6,7 +6,6 @@
 namespace flat2d::hal::can {
 namespace {
 
-constexpr std::uint32_t kErrorFlag = 0x20000000;         // CAN_ERR_FLAG (linux/can.h)
 constexpr std::uint32_t kFlagsAboveErrorFlag = 0xC0000000;  // CAN_EFF_FLAG | CAN_RTR_FLAG
 // The largest whole second whose nanoseconds, plus a fraction, still fit in TimeNs.
 constexpr std::uint64_t kMaxSeconds = std::numeric_limits<TimeNs>::max() / kNsPerSecond - 1;
@@ -78,7 +77,7 @@ CandumpError ParseId(std::string_view digits, CanFrame& frame) {
   }
   if (digits.size() == 3) {
     if (value > kMaxStandardId) return CandumpError::kStandardIdTooLarge;
-  } else if ((value & kErrorFlag) != 0) {
+  } else if ((value & kCanErrorFlag) != 0) {
     if ((value & kFlagsAboveErrorFlag) != 0) return CandumpError::kErrorFrameForm;
     frame.error = true;
     value &= kMaxExtendedId;

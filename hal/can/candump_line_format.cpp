@@ -6,7 +6,6 @@
 namespace flat2d::hal::can {
 namespace {
 
-constexpr std::uint32_t kErrorFlag = 0x20000000;  // CAN_ERR_FLAG (linux/can.h)
 constexpr std::string_view kHexDigits = "0123456789ABCDEF";
 constexpr int kMaxDecimalDigits = 20;  // of a uint64
 constexpr int kMaxInterfaceWidth = 16;
@@ -80,7 +79,7 @@ std::string_view CheckWritable(const CanFrame& frame, const CandumpFormat& forma
 // lib.c sprint_canframe without separators, as candump -l calls it.
 void PutFrame(const CanFrame& frame, LineOutput& out) {
   if (frame.error) {
-    out.PutHex(frame.id | kErrorFlag, 8);
+    out.PutHex(frame.id | kCanErrorFlag, 8);
   } else {
     out.PutHex(frame.id, frame.extended ? 8 : 3);
   }

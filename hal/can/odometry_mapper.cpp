@@ -1,5 +1,7 @@
 #include "hal/can/odometry_mapper.hpp"
 
+#include "hal/common/angles.hpp"
+
 #include <cctype>
 #include <cmath>
 #include <numbers>
@@ -8,8 +10,6 @@
 
 namespace flat2d::hal::can {
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 struct UnitEntry {
   std::string_view name;

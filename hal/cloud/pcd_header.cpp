@@ -20,9 +20,9 @@ std::optional<ScalarKind> KindOf(std::string_view type) {
 }
 
 // Collects the header lines; Finish() checks them against each other.
-class HeaderParser {
+class PcdHeaderParser {
  public:
-  explicit HeaderParser(std::string_view source) : source_(source) {}
+  explicit PcdHeaderParser(std::string_view source) : source_(source) {}
 
   Status Apply(const Line& line) {
     const std::string_view k = line.keyword;
@@ -190,7 +190,7 @@ class HeaderParser {
 }  // namespace
 
 Result<PcdHeader> ParsePcdHeader(std::string_view bytes, std::string_view source_name) {
-  HeaderParser parser(source_name);
+  PcdHeaderParser parser(source_name);
   PcdHeader header;
   std::size_t start = 0;
   for (std::size_t number = 1; start < bytes.size(); ++number) {

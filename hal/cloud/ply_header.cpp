@@ -5,7 +5,7 @@
 namespace flat2d::hal::cloud {
 namespace {
 
-std::optional<ScalarType> TypeNamed(std::string_view name) {
+std::optional<ScalarType> PlyTypeNamed(std::string_view name) {
   struct Named {
     std::string_view old_name, sized_name;
     ScalarType type;
@@ -22,9 +22,9 @@ std::optional<ScalarType> TypeNamed(std::string_view name) {
   return std::nullopt;
 }
 
-class HeaderParser {
+class PlyHeaderParser {
  public:
-  explicit HeaderParser(std::string_view source) : source_(source) {}
+  explicit PlyHeaderParser(std::string_view source) : source_(source) {}
 
   // One line after "ply"; sets `done` at end_header.
   Status Apply(std::size_t number, const std::vector<std::string_view>& words, bool& done) {
@@ -102,11 +102,11 @@ class HeaderParser {
     PlyProperty property;
     property.name = std::string(words.back());
     property.list = list;
-    const std::optional<ScalarType> type = TypeNamed(words[words.size() - 2]);
+    const std::optional<ScalarType> type = PlyTypeNamed(words[words.size() - 2]);
     if (!type) return FailIn("property", property.name, "unknown type '" + std::string(words[words.size() - 2]) + "'");
     property.type = *type;
     if (list) {
-      const std::optional<ScalarType> count_type = TypeNamed(words[2]);
+      const std::optional<ScalarType> count_type = PlyTypeNamed(words[2]);
       if (!count_type || !count_type->integer()) {
         return FailIn("property", property.name, "list count type '" + std::string(words[2]) + "' is no integer type");
       }
@@ -125,7 +125,7 @@ class HeaderParser {
 }  // namespace
 
 Result<PlyHeader> ParsePlyHeader(std::string_view bytes, std::string_view source_name) {
-  HeaderParser parser(source_name);
+  PlyHeaderParser parser(source_name);
   std::size_t start = 0;
   for (std::size_t number = 1; start < bytes.size(); ++number) {
     std::size_t end = bytes.find('\n', start);

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "hal/net/byte_order.hpp"
+#include "hal/net/ipv4.hpp"
 
 namespace flat2d::hal::net {
 namespace {
@@ -16,7 +17,6 @@ constexpr std::uint16_t kEtherTypeQinQLegacy = 0x9100;  // pre-standard QinQ
 // Real networks stack at most two tags (QinQ); a few more tolerates odd gear while
 // bounding the work a hostile frame can cause.
 constexpr int kMaxVlanTags = 4;
-constexpr std::size_t kEthernetHeaderBytes = 14;
 constexpr std::size_t kEthernetTypeOffset = 12;
 constexpr std::size_t kVlanTagBytes = 4;
 constexpr std::size_t kSllHeaderBytes = 16;
@@ -35,7 +35,6 @@ constexpr std::size_t kIpv4MinHeaderBytes = 20;
 constexpr std::uint8_t kIpProtocolUdp = 17;
 constexpr std::uint16_t kIpv4MoreFragmentsFlag = 0x2000;
 constexpr std::uint16_t kIpv4FragmentOffsetMask = 0x1FFF;
-constexpr std::size_t kUdpHeaderBytes = 8;
 
 ParsedFrame Verdict(FrameVerdict verdict) {
   ParsedFrame parsed;

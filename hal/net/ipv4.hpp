@@ -19,6 +19,9 @@ inline constexpr std::uint32_t kIpv4Any = 0x00000000;        // 0.0.0.0
 inline constexpr std::uint32_t kIpv4Loopback = 0x7F000001;   // 127.0.0.1
 inline constexpr std::uint32_t kIpv4Broadcast = 0xFFFFFFFF;  // 255.255.255.255
 
+inline constexpr std::size_t kEthernetHeaderBytes = 14;  // without VLAN tags
+inline constexpr std::size_t kUdpHeaderBytes = 8;
+
 // The largest payload one IPv4/UDP datagram can carry: 65535 - 20 (IPv4) - 8 (UDP).
 inline constexpr std::size_t kMaxUdpPayloadBytes = 65507;
 

@@ -16,9 +16,7 @@
 namespace flat2d::hal::net {
 namespace {
 
-constexpr std::size_t kEthernetHeaderBytes = 14;
 constexpr std::size_t kIpv4HeaderBytes = 20;
-constexpr std::size_t kUdpHeaderBytes = 8;
 constexpr std::size_t kHeaderBytes = kEthernetHeaderBytes + kIpv4HeaderBytes + kUdpHeaderBytes;
 constexpr std::size_t kMaxFrameBytes = kHeaderBytes + kMaxUdpPayloadBytes;
 constexpr std::uint8_t kIpv4DefaultTtl = 64;

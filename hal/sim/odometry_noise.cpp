@@ -1,12 +1,13 @@
 #include "hal/sim/odometry_noise.hpp"
 
+#include "hal/common/angles.hpp"
+
 #include <cmath>
 #include <numbers>
 
 namespace flat2d::hal::sim {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kPerHour = 1.0 / 3600.0;          // deg/h -> deg/s
 constexpr double kPerSqrtHour = 1.0 / 60.0;        // deg/sqrt(h) -> deg/sqrt(s)
 

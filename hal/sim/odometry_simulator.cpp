@@ -7,12 +7,12 @@
 #include <tuple>
 #include <utility>
 
+#include "hal/common/angles.hpp"
 #include "hal/sim/vehicle_dbc.hpp"
 
 namespace flat2d::hal::sim {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 constexpr double kMpsToKph = 3.6;
 constexpr double kMaxRateHz = 1000.0;
 constexpr double kMaxSteerRateDegps = 2000.0;  // STEER_RATE holds +-2047 deg/s  // a frame per millisecond: beyond any chassis ECU

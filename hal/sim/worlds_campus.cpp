@@ -186,7 +186,7 @@ void AddTraffic(SceneDescription& scene) {
 
 // Drives give a lane's rectangle corners as waypoints and round them with the lane's own
 // radius, so the path is the lane's centre line.
-void AddDrives(SceneDescription& scene) {
+void AddCampusDrives(SceneDescription& scene) {
   const double outer_radius = kRadius + kSlowLane, inner_radius = kRadius - kSlowLane;
   // The slow lanes' rectangles: outer (anticlockwise) and inner (clockwise).
   const double ow = kX0 - kSlowLane, oe = kX1 + kSlowLane, os = kY0 - kSlowLane,
@@ -231,7 +231,7 @@ SceneDescription CampusWorld() {
   AddBuildings(scene);
   AddCarPark(scene);
   AddTraffic(scene);
-  AddDrives(scene);
+  AddCampusDrives(scene);
   return scene;
 }
 

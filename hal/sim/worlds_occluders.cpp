@@ -27,7 +27,7 @@ void AddRow(SceneDescription& scene) {
   }
 }
 
-void AddDrives(SceneDescription& scene) {
+void AddOccludersDrives(SceneDescription& scene) {
   Drive* mapping = AddDrive(
       scene, "mapping",
       "Round the row at 1.5 m/s: east along its south side 7 m off, round its far end in "
@@ -58,7 +58,7 @@ SceneDescription OccludersWorld() {
       "(thesis 7.3.1, Fig. 7.6), in a walled 57 x 30 m room.");
   AddRoom(scene);
   AddRow(scene);
-  AddDrives(scene);
+  AddOccludersDrives(scene);
   return scene;
 }
 

@@ -110,7 +110,7 @@ void AddCorridorFittings(SceneDescription& scene) {
   AddCylinder(scene, {10.0, 58.7}, 0.3, kWallHeight);
 }
 
-void AddDrives(SceneDescription& scene) {
+void AddOfficeDrives(SceneDescription& scene) {
   Drive* mapping = AddDrive(
       scene, "mapping",
       "Every corridor once or twice: east along the south corridor, anticlockwise round the "
@@ -161,7 +161,7 @@ SceneDescription OfficeWorld() {
   AddRoomBlock(scene, 15, 45, 35, 70);
   AddLobby(scene);
   AddCorridorFittings(scene);
-  AddDrives(scene);
+  AddOfficeDrives(scene);
   return scene;
 }
 

@@ -47,7 +47,7 @@ void AddYard(SceneDescription& scene) {
   AddBox(scene, {8, 45}, 0.0, 6.0, 0.6, 1.0, kConcrete);          // a low barrier
 }
 
-void AddDrives(SceneDescription& scene) {
+void AddRampsDrives(SceneDescription& scene) {
   Drive* mapping = AddDrive(
       scene, "mapping",
       "Anticlockwise round the ramps inside the yard at 3 m/s, starting and ending in the "
@@ -81,7 +81,7 @@ SceneDescription RampsWorld() {
       "over 6 m, level for 5 m and falling over 6 m, in a walled 60 x 100 m yard.");
   AddRamps(scene);
   AddYard(scene);
-  AddDrives(scene);
+  AddRampsDrives(scene);
   return scene;
 }
 

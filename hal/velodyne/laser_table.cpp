@@ -1,12 +1,12 @@
 #include "hal/velodyne/laser_table.hpp"
 
+#include "hal/common/angles.hpp"
+
 #include <cassert>
 #include <numbers>
 
 namespace flat2d::hal::velodyne {
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // VLP-16 manual 63-9243 Rev E, Table 9-1: vertical angle (deg) and vertical
 // correction (mm) by laser id.

@@ -9,7 +9,6 @@
 namespace flat2d::hal::velodyne {
 namespace {
 
-constexpr std::uint32_t kUsPerHour = static_cast<std::uint32_t>(kNsPerHour / kNsPerUs);
 constexpr double kMaxRawDistance = 65535.0;
 
 void PutU16(std::uint8_t* bytes, std::uint16_t value) {

@@ -8,8 +8,6 @@
 namespace flat2d::hal::velodyne {
 namespace {
 
-constexpr std::uint32_t kUsPerHour = static_cast<std::uint32_t>(kNsPerHour / kNsPerUs);
-
 // The sentence region from offset 206 to the end of the payload: the text up to CR, LF or
 // NUL. The manual pads with NULs after CR/LF, so an all-NUL region means "no sentence".
 Result<std::size_t> SentenceLength(std::span<const std::uint8_t> region) {

@@ -10,7 +10,6 @@
 namespace flat2d::hal::velodyne {
 namespace {
 
-constexpr std::uint32_t kUsPerHour = static_cast<std::uint32_t>(kNsPerHour / kNsPerUs);
 constexpr TimeNs kNsPerDay = 24 * kNsPerHour;
 constexpr double kMpsToKnots = 3600.0 / 1852.0;  // 1 knot = 1852 m per hour
 constexpr double kMaxKnots = 99999.0;            // bounds the sentence length

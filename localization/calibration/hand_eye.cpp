@@ -1,5 +1,7 @@
 #include "localization/calibration/hand_eye.hpp"
 
+#include "hal/common/angles.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -15,7 +17,6 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 using Jacobian = Eigen::Matrix<double, 6, 6>;
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 constexpr double kDifferenceStep = 1e-6;
 
 // x, y, z (m), roll, pitch, yaw (rad) -> vehicle_T_sensor, Z-Y-X as maps::VehicleFromSensor.

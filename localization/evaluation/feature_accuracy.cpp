@@ -1,5 +1,7 @@
 #include "localization/evaluation/feature_accuracy.hpp"
 
+#include "hal/common/angles.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -7,8 +9,6 @@
 
 namespace flat2d::localization::evaluation {
 namespace {
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * kRadToDeg;

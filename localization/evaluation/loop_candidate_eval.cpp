@@ -6,13 +6,12 @@
 #include <set>
 #include <utility>
 
+#include "hal/common/angles.hpp"
 #include "localization/loops/trajectory_shape.hpp"
 
 namespace flat2d::localization::evaluation {
 
 namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 // Distance from a point to a polyline of positions.
 double DistanceToPath(const Eigen::Vector3d& point, std::span<const Eigen::Isometry3d> path, int first, int last) {

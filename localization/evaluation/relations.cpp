@@ -1,5 +1,7 @@
 #include "localization/evaluation/relations.hpp"
 
+#include "hal/common/angles.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,8 +12,6 @@
 
 namespace flat2d::localization::evaluation {
 namespace {
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 MeanStd Summarize(const std::vector<double>& values) {
   MeanStd out;

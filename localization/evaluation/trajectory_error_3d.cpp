@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "hal/common/angles.hpp"
 #include "hal/trajectory/pose_interpolation.hpp"
 #include "localization/evaluation/trajectory_error.hpp"
 
@@ -13,7 +14,6 @@ namespace {
 
 using hal::trajectory::StampedPose;
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 // Times within this of a pose are that pose, as relations.hpp's PoseAt: files print 6 decimals.
 constexpr TimeNs kSameTimeNs = 2 * kNsPerUs;
 

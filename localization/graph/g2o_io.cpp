@@ -23,7 +23,7 @@ bool Is3dTag(std::string_view tag) {
          tag.starts_with("VERTEX3") || tag.starts_with("EDGE3");
 }
 
-Status ParseRecord(const std::vector<std::string_view>& fields, GraphTextBuilder& builder,
+Status ParseG2oRecord(const std::vector<std::string_view>& fields, GraphTextBuilder& builder,
                    int line) {
   const std::string_view tag = fields.front();
   const std::string& source = builder.source();
@@ -71,7 +71,7 @@ Result<PoseGraph> ReadG2o(std::istream& in, const std::string& source) {
   for (int line = 1; std::getline(in, text); ++line) {
     const std::vector<std::string_view> fields = SplitFields(text);
     if (fields.empty() || fields.front().starts_with('#')) continue;
-    if (Status s = ParseRecord(fields, builder, line); !s) return s.error();
+    if (Status s = ParseG2oRecord(fields, builder, line); !s) return s.error();
   }
   if (in.bad()) return MakeError(source + ": read error");
   return builder.Build();

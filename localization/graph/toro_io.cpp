@@ -25,7 +25,7 @@ Eigen::Matrix3d FromToroOrder(const std::array<double, 6>& v) {
   return m;
 }
 
-Status ParseRecord(const std::vector<std::string_view>& fields, GraphTextBuilder& builder,
+Status ParseToroRecord(const std::vector<std::string_view>& fields, GraphTextBuilder& builder,
                    int line) {
   const std::string_view tag = fields.front();
   const std::string& source = builder.source();
@@ -65,7 +65,7 @@ Result<PoseGraph> ReadToro(std::istream& in, const std::string& source) {
   for (int line = 1; std::getline(in, text); ++line) {
     const std::vector<std::string_view> fields = SplitFields(text);
     if (fields.empty() || fields.front().starts_with('#')) continue;
-    if (Status s = ParseRecord(fields, builder, line); !s) return s.error();
+    if (Status s = ParseToroRecord(fields, builder, line); !s) return s.error();
   }
   if (in.bad()) return MakeError(source + ": read error");
   return builder.Build();

@@ -11,13 +11,12 @@
 #include <mrpt/slam/CMonteCarloLocalization2D.h>
 
 #include "hal/common/thread_cpu_time.hpp"
+#include "hal/common/time.hpp"
 #include "localization/tools/grid_run.hpp"
 #include "localization/tools/odometry_poses.hpp"
 
 namespace flat2d::localization::peers {
 namespace {
-
-constexpr double kNsToS = 1e-9;
 
 double ThreadCpuMs() { return 1e3 * ThreadCpuSeconds(); }
 
@@ -57,7 +56,7 @@ class MclTracker {
   // Steps the filter with this revolution; false with `failure` set when it cannot start.
   bool Step(const maps::PublishedGrid& grid, MclRunResult& result) {
     const Se2 local_T_grid = Se2Of(grid.local_T_grid);
-    const double time_s = static_cast<double>(grid.start_ns) * kNsToS;
+    const double time_s = static_cast<double>(grid.start_ns) * kSecondsPerNs;
     auto scan = mrpt::obs::CObservation2DRangeScan::Create();
     result.scan_returns.push_back(StructureScan(*grid.grid, options_.scan, *scan));
 

@@ -2,13 +2,12 @@
 
 #include <cmath>
 
+#include "hal/common/time.hpp"
 #include "localization/evaluation/trajectory_error.hpp"
 #include "localization/tools/odometry_poses.hpp"
 
 namespace flat2d::localization {
 namespace {
-
-constexpr double kNsToS = 1e-9;
 
 std::vector<Eigen::Vector2d> SlammableCells(const maps::ClassGrid& grid) {
   std::vector<Eigen::Vector2d> points;
@@ -98,7 +97,7 @@ Result<DriveBuildResult> BuildFromDrive(const DriveBuildOptions& options) {
   pass.on_grid = [&](const maps::PublishedGrid& published) {
     ++result.revolutions;
     if (published.fans_without_pose > 0) return;  // outside the CAN log's time
-    const double time_s = static_cast<double>(published.start_ns) * kNsToS;
+    const double time_s = static_cast<double>(published.start_ns) * kSecondsPerNs;
     if (builder.keyframes().empty() && !options.anchor.empty()) {
       Se2 anchor;
       if (!evaluation::PoseAt(options.anchor, time_s, 1.0, anchor)) return;  // before the anchor's time
@@ -123,7 +122,7 @@ Result<DriveBuildResult> BuildFromDrive(const DriveBuildOptions& options) {
 
   std::vector<maps::StampedPose2d> corrected;
   for (const maps::StampedPose2d& p : *odometry) {
-    const double time_s = static_cast<double>(p.time_ns) * kNsToS;
+    const double time_s = static_cast<double>(p.time_ns) * kSecondsPerNs;
     const Se2 odom(p.position, p.yaw);
     const Se2 world = builder.CorrectedPose(time_s, odom);
     result.odometry.push_back({time_s, odom});

@@ -6,14 +6,13 @@
 
 #include "hal/can/candump_log.hpp"
 #include "hal/can/dbc.hpp"
+#include "hal/common/time.hpp"
 #include "hal/net/datagram_source.hpp"
 #include "localization/localizer/localization_pipeline.hpp"
 #include "localization/odometry/odometry_config.hpp"
 
 namespace flat2d::localization {
 namespace {
-
-constexpr double kNsToS = 1e-9;
 
 // Sleeps until the input's time has come, relative to the first input (realtime replay).
 class Pacer {
@@ -72,7 +71,7 @@ Result<LocalizeRunResult> RunLocalization(const LocalizeRunOptions& options) {
 
   LocalizeRunResult result;
   localization.set_revolution_handler([&](const maps::PublishedGrid& grid, const RevolutionReport& report) {
-    result.revolutions.push_back({static_cast<double>(grid.start_ns) * kNsToS, report});
+    result.revolutions.push_back({static_cast<double>(grid.start_ns) * kSecondsPerNs, report});
   });
   bool initialized = false;
   Se2 global_T_local;  // the initial pose's, for the open-loop odometry
@@ -84,19 +83,19 @@ Result<LocalizeRunResult> RunLocalization(const LocalizeRunOptions& options) {
     if (!initialized) {
       initialized = true;
       const Result<Se2> pose =
-          InitialPoseAt(options.initial, static_cast<double>(sample.time_ns) * kNsToS, "first odometry sample");
+          InitialPoseAt(options.initial, static_cast<double>(sample.time_ns) * kSecondsPerNs, "first odometry sample");
       if (!pose.ok()) {
         failure = pose.error();
         return;
       }
       const Eigen::Vector3d sigma(options.initial.sigma_m, options.initial.sigma_m, options.initial.sigma_rad);
       localization.localizer().SetInitialPose(sample.time_ns, *pose, sigma.cwiseAbs2().asDiagonal());
-      result.first_fix_s = static_cast<double>(sample.time_ns) * kNsToS;
+      result.first_fix_s = static_cast<double>(sample.time_ns) * kSecondsPerNs;
       global_T_local = *pose * sample.local_T_vehicle.Inverse();
     }
-    result.odometry.push_back({static_cast<double>(sample.time_ns) * kNsToS, global_T_local * sample.local_T_vehicle});
+    result.odometry.push_back({static_cast<double>(sample.time_ns) * kSecondsPerNs, global_T_local * sample.local_T_vehicle});
     const GlobalPose pose = localization.PoseAt(sample.time_ns);
-    if (pose.ok) result.estimate.push_back({static_cast<double>(sample.time_ns) * kNsToS, pose.global_T_vehicle});
+    if (pose.ok) result.estimate.push_back({static_cast<double>(sample.time_ns) * kSecondsPerNs, pose.global_T_vehicle});
   };
 
   // Merge by time: the earlier of the next frame and the next datagram goes first.

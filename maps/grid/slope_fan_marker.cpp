@@ -4,13 +4,10 @@
 #include <numbers>
 #include <span>
 
+#include "hal/common/angles.hpp"
 #include "maps/grid/structure_grid_config.hpp"
 
 namespace flat2d::maps {
-
-namespace {
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-}  // namespace
 
 SlopeFanMarker::SlopeFanMarker(const hal::velodyne::LaserTable& table, const StructureGridOptions& options)
     : order_(BottomUpOrder(table)),

@@ -5,13 +5,12 @@
 #include <numbers>
 #include <string>
 
+#include "hal/common/angles.hpp"
 #include "hal/config/text_proto.hpp"
 
 namespace flat2d::maps {
 
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // Collects the first problem found; each check names the field it looked at.
 class Checker {

@@ -14,6 +14,7 @@
 #include "daemon/service/api_handler.hpp"
 #include "daemon/service/localization_worker.hpp"
 #include "hal/can/candump_log.hpp"
+#include "hal/common/time.hpp"
 #include "hal/net/datagram_source.hpp"
 #include "tests/daemon/simulated_drive.hpp"
 #include "tests/testing/allocation_counter.hpp"
@@ -22,7 +23,6 @@ namespace flat2d::daemon {
 namespace {
 
 using localization::LocalizerState;
-constexpr double kNsToS = 1e-9;
 
 struct Sample {
   TimeNs time_ns = 0;
@@ -42,7 +42,7 @@ void WaitUntilDrained(const InputQueue& queue) {
 
 double PositionError(const testing::SimulatedDrive& drive, const Sample& sample) {
   localization::Se2 truth;
-  if (!localization::evaluation::PoseAt(drive.truth, static_cast<double>(sample.time_ns) * kNsToS, 0.1, truth)) return -1;
+  if (!localization::evaluation::PoseAt(drive.truth, static_cast<double>(sample.time_ns) * kSecondsPerNs, 0.1, truth)) return -1;
   return (sample.pose.global_T_vehicle.translation() - truth.translation()).norm();
 }
 
@@ -160,7 +160,7 @@ TEST(DaemonReplay, LidarSilenceDegradesWithGrowingCovarianceThenRecovers) {
   thread = {};
   ASSERT_EQ(next_probe, probes.size());
   for (const Probe& p : probes) {
-    std::printf("t %+.1f s from the silence: %s, sigma %.3f m\n", static_cast<double>(p.at_ns - silence_from) * kNsToS,
+    std::printf("t %+.1f s from the silence: %s, sigma %.3f m\n", static_cast<double>(p.at_ns - silence_from) * kSecondsPerNs,
                 std::string(localization::LocalizerStateName(p.state)).c_str(), p.sigma_m);
   }
   EXPECT_EQ(probes[0].state, LocalizerState::kLocalized);

@@ -8,12 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include "hal/common/angles.hpp"
 #include "tests/testing/data_path.hpp"
 
 namespace flat2d::hal::velodyne {
 namespace {
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 // One flow-style laser entry per line, as the ROS files write them; `extra` ends the map.
 std::string Laser(int id, double rot_correction, const std::string& extra = "") {

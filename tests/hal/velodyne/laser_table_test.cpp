@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include "hal/common/angles.hpp"
+
 namespace flat2d::hal::velodyne {
 namespace {
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 TEST(LaserTable, Vlp16ElevationsInterleaveFromMinus15To15) {
   const LaserTable table = DefaultLaserTable(Model::kVlp16);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hal/common/angles.hpp"
 #include "tests/testing/velodyne_packet_builder.hpp"
 
 namespace flat2d::hal::velodyne {
@@ -14,7 +15,6 @@ namespace {
 
 using flat2d::testing::DataPacketBuilder;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr std::uint8_t kStrongest = 0x37, kLast = 0x38, kDual = 0x39;
 
 DecodedPacket Decode(Model model, std::span<const std::uint8_t> bytes) {
@@ -57,11 +57,11 @@ TEST(PacketDecoder, Vlp16SecondFiringSequenceIsInterpolatedInTimeAndAzimuth) {
   // Fan 1 is block 0's second sequence: 55.296 us after the first, halfway to block 1.
   const Fan& fan = packet.fans[1];
   EXPECT_EQ(fan.stamp_ns, 55'296);
-  EXPECT_NEAR(fan.azimuth_rad, 10.20 * kDeg, 1e-6);
-  EXPECT_NEAR(fan.returns[0].azimuth_rad, 10.20 * kDeg, 1e-6);
+  EXPECT_NEAR(fan.azimuth_rad, 10.20 * kDegToRad, 1e-6);
+  EXPECT_NEAR(fan.returns[0].azimuth_rad, 10.20 * kDegToRad, 1e-6);
   EXPECT_EQ(fan.returns[0].time_offset_ns, 0);
   // Laser 1 fires 2.304 us later: 40 x 57.6 / 110.592 = 20.83 -> 21 hundredths.
-  EXPECT_NEAR(fan.returns[1].azimuth_rad, 10.21 * kDeg, 1e-6);
+  EXPECT_NEAR(fan.returns[1].azimuth_rad, 10.21 * kDegToRad, 1e-6);
   EXPECT_EQ(fan.returns[1].time_offset_ns, 2'304);
   // Block 1 starts one block period (110.592 us) after block 0.
   EXPECT_EQ(packet.fans[2].stamp_ns, 110'592);
@@ -80,7 +80,7 @@ TEST(PacketDecoder, Hdl32eFiresLaserPairs1152NsApart) {
   const LaserReturn& r = fan.returns[5];
   EXPECT_EQ(r.time_offset_ns, 2 * 1'152);
   // Block azimuth 90.00 deg, + 16 x 2.304 / 46.08 = 0.8 -> 1 hundredth.
-  EXPECT_NEAR(r.azimuth_rad, 90.01 * kDeg, 1e-6);
+  EXPECT_NEAR(r.azimuth_rad, 90.01 * kDegToRad, 1e-6);
   EXPECT_NEAR(r.xyz.x(), -0.003467, 1e-5);
   EXPECT_NEAR(r.xyz.y(), -19.864632, 1e-4);
   EXPECT_NEAR(r.xyz.z(), -2.323014, 1e-4);
@@ -93,7 +93,7 @@ TEST(PacketDecoder, Vlp32cAppliesAzimuthOffsetAnd4mmUnits) {
   ASSERT_EQ(packet.error, PacketError::kNone);
   const LaserReturn& r = packet.fans[0].returns[0];
   EXPECT_FLOAT_EQ(r.range_m, 10.0f);  // 2500 x 4 mm
-  EXPECT_NEAR(r.azimuth_rad, 0.90 * kDeg, 1e-6);  // 359.50 + 1.40 wraps to 0.90
+  EXPECT_NEAR(r.azimuth_rad, 0.90 * kDegToRad, 1e-6);  // 359.50 + 1.40 wraps to 0.90
   EXPECT_NEAR(r.xyz.x(), 9.061960, 1e-5);
   EXPECT_NEAR(r.xyz.y(), -0.142357, 1e-5);
   EXPECT_NEAR(r.xyz.z(), -4.226183, 1e-5);
@@ -120,7 +120,7 @@ TEST(PacketDecoder, DualReturnPairsShareFiringAndInterleaveByTime) {
     EXPECT_LE(packet.fans[f - 1].stamp_ns, packet.fans[f].stamp_ns) << "fan " << f;
   }
   // The azimuth gap of a dual pair is to the next pair (40 hundredths), not 0.
-  EXPECT_NEAR(packet.fans[2].azimuth_rad, 5.20 * kDeg, 1e-6);
+  EXPECT_NEAR(packet.fans[2].azimuth_rad, 5.20 * kDegToRad, 1e-6);
 }
 
 TEST(PacketDecoder, LastReturnModeMarksFansLast) {
@@ -139,8 +139,8 @@ TEST(PacketDecoder, AzimuthJumpInsidePacketReusesLastGap) {
   const DecodedPacket packet = Decode(Model::kVlp32c, builder.bytes());
   ASSERT_EQ(packet.error, PacketError::kNone);
   // 91.00 + 20 x 2.304 / 55.296 (0.83 -> 1) + 1.40 offset, not an interpolation over 179 deg.
-  EXPECT_NEAR(packet.fans[5].returns[2].azimuth_rad, 92.41 * kDeg, 1e-6);
-  EXPECT_NEAR(packet.fans[6].azimuth_rad, 270.0 * kDeg, 1e-6);
+  EXPECT_NEAR(packet.fans[5].returns[2].azimuth_rad, 92.41 * kDegToRad, 1e-6);
+  EXPECT_NEAR(packet.fans[6].azimuth_rad, 270.0 * kDegToRad, 1e-6);
 }
 
 TEST(PacketDecoder, RejectsMalformedPacketsWithReason) {

@@ -25,7 +25,7 @@ namespace flat2d::hal::velodyne {
 namespace {
 
 constexpr double kUnitsToRad = 2.0 * std::numbers::pi / 36000.0;
-constexpr unsigned kSeed = 42;
+constexpr unsigned kEncoderSeed = 42;
 
 // Random raw content: azimuths advance `step` units per firing from a random start (with
 // the wrap at 36000 inside the packet for some seeds); about one record in five is empty.
@@ -65,8 +65,8 @@ TEST_P(EncodeDecode, EveryRecordDecodesToItsContent) {
   const FiringSchedule schedule(model, mode);
   PacketDecoder decoder(table);
   DecodedPacket decoded;
-  std::mt19937 rng(kSeed);
-  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  std::mt19937 rng(kEncoderSeed);
+  SCOPED_TRACE("seed " + std::to_string(kEncoderSeed));
   for (int trial = 0; trial < 20; ++trial) {
     const DataPacketContent content = RandomContent(rng, schedule, mode, 0x5A);
     const auto bytes = EncodeDataPacket(content);
@@ -181,7 +181,7 @@ TEST(PacketEncoder, RejectsWhatWouldBeAMalformedPacket) {
 // (d) RawDistance is the decoder's range formula inverted to within half a unit, and 0 where
 // no raw distance can carry the range.
 TEST(RawDistance, InvertsTheDecoderWithinHalfAUnit) {
-  std::mt19937 rng(kSeed);
+  std::mt19937 rng(kEncoderSeed);
   for (Model model : {Model::kVlp16, Model::kHdl32e, Model::kVlp32c}) {
     LaserTable table = DefaultLaserTable(model);
     table.lasers[3].distance_offset_m = 0.057;  // as a calibration file may give

@@ -7,14 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include "hal/common/angles.hpp"
 #include "hal/net/datagram_source.hpp"
 #include "hal/velodyne/capture_summary.hpp"
 #include "tests/testing/data_path.hpp"
 
 namespace flat2d::hal::velodyne {
 namespace {
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 struct Capture {
   const char* path;

@@ -6,14 +6,15 @@
 
 #include <gtest/gtest.h>
 
+#include "hal/common/angles.hpp"
+
 namespace flat2d::hal::velodyne {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Fan MakeFan(double azimuth_deg, TimeNs stamp, bool with_return = true) {
   Fan fan;
-  fan.azimuth_rad = static_cast<float>(azimuth_deg * kDeg);
+  fan.azimuth_rad = static_cast<float>(azimuth_deg * kDegToRad);
   fan.stamp_ns = stamp;
   fan.num_lasers = 16;
   if (with_return) {
@@ -47,18 +48,18 @@ TEST(RevolutionAssembler, CutsAtTheWrapAndMarksPartialEnds) {
   EXPECT_EQ(revolutions[1].fans.size(), 1800u);
   EXPECT_EQ(revolutions[1].points, 1800);
   EXPECT_NEAR(revolutions[1].fans.front().azimuth_rad, 0.0, 1e-4);
-  EXPECT_NEAR(revolutions[1].swept_azimuth_rad, (360.0 - 0.2) * kDeg, 1e-3);
+  EXPECT_NEAR(revolutions[1].swept_azimuth_rad, (360.0 - 0.2) * kDegToRad, 1e-3);
   EXPECT_EQ(revolutions[2].sequence, 2u);
   EXPECT_LT(revolutions[1].start_ns(), revolutions[1].end_ns());
 }
 
 TEST(RevolutionAssembler, CutAngleIsConfigurable) {
   RevolutionOptions options;
-  options.cut_azimuth_rad = 90.0 * kDeg;
+  options.cut_azimuth_rad = 90.0 * kDegToRad;
   RevolutionAssembler assembler(options, Model::kVlp16, ReturnMode::kStrongest);
   const auto revolutions = Spin(assembler, 0.0, 0.5, 2.0);
   ASSERT_GE(revolutions.size(), 2u);
-  EXPECT_NEAR(revolutions[1].fans.front().azimuth_rad, 90.0 * kDeg, 1e-4);
+  EXPECT_NEAR(revolutions[1].fans.front().azimuth_rad, 90.0 * kDegToRad, 1e-4);
 }
 
 TEST(RevolutionAssembler, JitterAndDualPairsDoNotCut) {
@@ -85,7 +86,7 @@ TEST(RevolutionAssembler, AzimuthJumpCutsOnlyWhenItCrossesTheCut) {
   }
   ASSERT_EQ(done.size(), 3u);  // one cut at 0 deg per turn; the 90 -> 270 jump is not one
   EXPECT_TRUE(done[1].complete);
-  EXPECT_NEAR(done[1].swept_azimuth_rad, 180.0 * kDeg, 0.01);  // jump not counted as sweep
+  EXPECT_NEAR(done[1].swept_azimuth_rad, 180.0 * kDegToRad, 0.01);  // jump not counted as sweep
 }
 
 TEST(RevolutionAssembler, OverflowDropsAndCountsFans) {

@@ -8,15 +8,16 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "hal/common/angles.hpp"
+
 namespace flat2d::localization::calibration {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // vehicle_T_sensor's rotation, Z-Y-X.
 Eigen::Matrix3d Rotation(double roll_deg, double pitch_deg, double yaw_deg) {
-  return (Eigen::AngleAxisd(yaw_deg * kDeg, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_deg * kDeg, Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(roll_deg * kDeg, Eigen::Vector3d::UnitX()))
+  return (Eigen::AngleAxisd(yaw_deg * kDegToRad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_deg * kDegToRad, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(roll_deg * kDegToRad, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
 }
 
@@ -51,15 +52,15 @@ TEST(GroundPlane, TiltedSensorGivesItsRollPitchAndHeight) {
   EXPECT_NEAR(plane->height_m, 1.6, 0.005);
   EXPECT_GT(plane->inliers, 2500);  // of 4000: far returns where the guess tilts down are not candidates
   const Eigen::Vector2d roll_pitch = RollPitchOf(plane->normal);
-  EXPECT_NEAR(roll_pitch.x() / kDeg, 2.0, 0.05);
-  EXPECT_NEAR(roll_pitch.y() / kDeg, -3.0, 0.05);
+  EXPECT_NEAR(roll_pitch.x() / kDegToRad, 2.0, 0.05);
+  EXPECT_NEAR(roll_pitch.y() / kDegToRad, -3.0, 0.05);
 }
 
 TEST(GroundPlane, RollPitchOfInvertsTheMounting) {
   for (const auto& [roll, pitch, yaw] : {std::array{0.0, 0.0, 0.0}, {10.0, -20.0, 170.0}, {-45.0, 30.0, -90.0}}) {
     const Eigen::Vector2d rp = RollPitchOf(Rotation(roll, pitch, yaw).transpose() * Eigen::Vector3d::UnitZ());
-    EXPECT_NEAR(rp.x() / kDeg, roll, 1e-9);
-    EXPECT_NEAR(rp.y() / kDeg, pitch, 1e-9);
+    EXPECT_NEAR(rp.x() / kDegToRad, roll, 1e-9);
+    EXPECT_NEAR(rp.y() / kDegToRad, pitch, 1e-9);
   }
 }
 

@@ -7,17 +7,18 @@
 
 #include <gtest/gtest.h>
 
+#include "hal/common/angles.hpp"
+
 namespace flat2d::localization::calibration {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Eigen::Isometry3d Pose(double x, double y, double z, double roll_deg, double pitch_deg, double yaw_deg) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = Eigen::Vector3d(x, y, z);
-  pose.linear() = (Eigen::AngleAxisd(yaw_deg * kDeg, Eigen::Vector3d::UnitZ()) *
-                   Eigen::AngleAxisd(pitch_deg * kDeg, Eigen::Vector3d::UnitY()) *
-                   Eigen::AngleAxisd(roll_deg * kDeg, Eigen::Vector3d::UnitX()))
+  pose.linear() = (Eigen::AngleAxisd(yaw_deg * kDegToRad, Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(pitch_deg * kDegToRad, Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(roll_deg * kDegToRad, Eigen::Vector3d::UnitX()))
                       .toRotationMatrix();
   return pose;
 }
@@ -41,7 +42,7 @@ std::vector<Eigen::Isometry3d> VehiclePath(bool turns, bool hilly) {
     const double roll = hilly ? 3.0 * std::sin(t / 3.0) : 0.0;
     const double pitch = hilly ? 4.0 * std::sin(t / 5.0) : 0.0;
     const double z = hilly ? 0.5 * std::sin(t / 4.0) : 0.0;
-    path.push_back(Pose(x, y, z, roll, pitch, heading / kDeg));
+    path.push_back(Pose(x, y, z, roll, pitch, heading / kDegToRad));
   }
   return path;
 }
@@ -67,7 +68,7 @@ void ExpectNear(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& trut
   if (height_too) {
     EXPECT_LT(std::abs(d.z()), metres) << d.transpose();
   }
-  EXPECT_LT(Eigen::AngleAxisd(estimate.rotation().transpose() * truth.rotation()).angle(), degrees * kDeg);
+  EXPECT_LT(Eigen::AngleAxisd(estimate.rotation().transpose() * truth.rotation()).angle(), degrees * kDegToRad);
 }
 
 TEST(HandEye, PlanarDriveRecoversAllButTheHeight) {
@@ -123,7 +124,7 @@ TEST(HandEye, NearlyStraightDriveHoldsTheLeverArm) {
   EXPECT_TRUE(result->observable[5]);
   // The direction of travel in the sensor frame is what it does know.
   const Eigen::Vector3d travel = result->vehicle_T_sensor.rotation().transpose() * Eigen::Vector3d::UnitX();
-  EXPECT_LT(std::acos(std::min(1.0, travel.dot(kTruth.rotation().transpose() * Eigen::Vector3d::UnitX()))), 0.05 * kDeg);
+  EXPECT_LT(std::acos(std::min(1.0, travel.dot(kTruth.rotation().transpose() * Eigen::Vector3d::UnitX()))), 0.05 * kDegToRad);
 }
 
 TEST(HandEye, WrongSensorMotionsAreDownWeighted) {
@@ -147,7 +148,7 @@ TEST(HandEye, WheelScaleErrorIsNotALeverArm) {
     heading += (i % 150 >= 100 ? 0.3 : 0.0) * 0.1;
     x += 0.3 * std::cos(heading);
     y += 0.3 * std::sin(heading);
-    vehicle.push_back(Pose(x, y, 0.0, 0.0, 0.0, heading / kDeg));
+    vehicle.push_back(Pose(x, y, 0.0, 0.0, 0.0, heading / kDegToRad));
   }
   auto pairs = MotionPairs(SensorTrack(vehicle, 8), vehicle);
   for (MotionPair& pair : pairs) pair.vehicle_motion.translation() *= 1.005;

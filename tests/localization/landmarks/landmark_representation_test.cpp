@@ -18,7 +18,7 @@ using testing::RandomUnit;
 using testing::RandomVector;
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kCases = 200;
+constexpr int kRepresentationCases = 200;
 
 // Case i cycles through a generic plane, a horizontal one (the pole of the angles), one
 // through the origin and one a hair off horizontal.
@@ -47,7 +47,7 @@ TEST(PlaneRepresentation, CoefficientsRoundTripThroughHessianAndAngles) {
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> scale(0.01, 100.0);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kRepresentationCases; ++i) {
     const Plane truth = PlaneCase(rng, i);
     const double s = (rng() % 2 == 0 ? 1.0 : -1.0) * scale(rng);
     Eigen::Vector4d abcd;
@@ -76,7 +76,7 @@ TEST(PlaneRepresentation, AnglesRoundTripAndThePoleConvention) {
   std::uniform_real_distribution<double> azimuth(-kPi + 1e-6, kPi - 1e-6);
   std::uniform_real_distribution<double> elevation(1e-6, kPi - 1e-6);
   std::uniform_real_distribution<double> offset(-50.0, 50.0);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kRepresentationCases; ++i) {
     const PlaneAngles angles{azimuth(rng), elevation(rng), offset(rng)};
     const Plane plane = FromAngles(angles);
     EXPECT_NEAR(plane.normal.norm(), 1.0, 1e-12);
@@ -103,7 +103,7 @@ TEST(PlaneRepresentation, TransformMatchesTransformedPoints) {
   const unsigned seed = 1303;
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kRepresentationCases; ++i) {
     const double scale = i % 3 == 0 ? 1e3 : 10.0;
     const Eigen::Isometry3d a_T_b = RandomPose(rng, scale);
     const Plane plane_b = PlaneCase(rng, i);
@@ -142,7 +142,7 @@ TEST(PlaneManifold, ZeroIsIdentityLocalInvertsRetractAndStepsAreGeodesic) {
   const unsigned seed = 1304;
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kRepresentationCases; ++i) {
     const Plane plane = PlaneCase(rng, i);
     const Plane same = Retract(plane, Eigen::Vector3d::Zero());
     EXPECT_LE((Coefficients(same) - Coefficients(plane)).norm(), 1e-15);
@@ -164,7 +164,7 @@ TEST(LineRepresentation, PointAndDirectionComeBackAsClosestPointAndUnitDirection
   const unsigned seed = 1305;
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kRepresentationCases; ++i) {
     Eigen::Vector3d point, direction;
     const PluckerLine line = LineCase(rng, i, &point, &direction);
     const Eigen::Vector3d unit = direction.normalized();
@@ -181,7 +181,7 @@ TEST(LineRepresentation, PluckerRoundTripsThroughOrthonormal) {
   const unsigned seed = 1306;
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kRepresentationCases; ++i) {
     Eigen::Vector3d point, direction;
     const PluckerLine line = LineCase(rng, i, &point, &direction);
     const OrthonormalLine orthonormal = ToOrthonormal(line);
@@ -203,7 +203,7 @@ TEST(LineRepresentation, TransformMatchesTransformedPoints) {
   const unsigned seed = 1307;
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kRepresentationCases; ++i) {
     const double scale = i % 2 == 0 ? 1e3 : 10.0;
     const Eigen::Isometry3d a_T_b = RandomPose(rng, scale);
     Eigen::Vector3d point, direction;
@@ -244,7 +244,7 @@ TEST(LineManifold, ZeroIsIdentityStepsComposeAndLocalInvertsRetract) {
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> fraction(-1.0, 1.0);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kRepresentationCases; ++i) {
     Eigen::Vector3d point, direction;
     const OrthonormalLine line = ToOrthonormal(LineCase(rng, i, &point, &direction));
     const OrthonormalLine same = Retract(line, Eigen::Vector4d::Zero());

@@ -16,11 +16,9 @@ using testing::RandomOrthogonal;
 using testing::RandomPose;
 using testing::RandomUnit;
 using testing::RandomVector;
+using testing::TranslationScale;
 
-constexpr int kCases = 100;
-
-// Every third case is far from the origin (translations up to 1 km).
-double TranslationScale(int i) { return i % 3 == 0 ? 1e3 : 10.0; }
+constexpr int kLineFactorCases = 100;
 
 // Generic, through-the-origin and far world lines.
 PluckerLine WorldLine(std::mt19937& rng, int i) {
@@ -47,7 +45,7 @@ TEST(LineFactor, ZeroAtTruthWhicheverWayTheLinesPoint) {
   const unsigned seed = 1315;
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kLineFactorCases; ++i) {
     const Eigen::Isometry3d world_T_sensor = RandomPose(rng, TranslationScale(i));
     const PluckerLine world = WorldLine(rng, i);
     const PluckerLine measured = SeenFrom(world_T_sensor, world);
@@ -63,7 +61,7 @@ TEST(LineFactor, ErrorMeasuresKnownMotionsOfTheSensor) {
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> amount(-0.5, 0.5);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kLineFactorCases; ++i) {
     const Eigen::Isometry3d world_T_sensor = RandomPose(rng, TranslationScale(i));
     const PluckerLine world = WorldLine(rng, i);
     const OrthonormalLine landmark = ToOrthonormal(world);
@@ -90,7 +88,7 @@ TEST(LineFactor, ErrorGrowsWithThePerturbation) {
   const unsigned seed = 1317;
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kLineFactorCases; ++i) {
     const Eigen::Isometry3d world_T_sensor = RandomPose(rng, TranslationScale(i));
     const PluckerLine world = WorldLine(rng, i);
     const OrthonormalLine landmark = ToOrthonormal(world);
@@ -115,7 +113,7 @@ TEST(LineFactor, AnalyticJacobiansEqualCentralDifferences) {
   const unsigned seed = 1318;
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kLineFactorCases; ++i) {
     const Eigen::Isometry3d world_T_sensor = RandomPose(rng, TranslationScale(i));
     const PluckerLine world = WorldLine(rng, i);
     // The landmark a little off the measured line, so that the error's own terms are
@@ -150,7 +148,7 @@ TEST(LineFactor, LandmarkAnchoredOffTheLineHasAFullRankChart) {
   const unsigned seed = 1319;
   std::printf("seed %u\n", seed);
   std::mt19937 rng(seed);
-  for (int i = 0; i < kCases; ++i) {
+  for (int i = 0; i < kLineFactorCases; ++i) {
     const Eigen::Isometry3d world_T_sensor = RandomPose(rng, 10.0);
     const PluckerLine world = *LineFromPointDirection(Eigen::Vector3d::Zero(), RandomUnit(rng));
     const PluckerLine measured = SeenFrom(world_T_sensor, world);

@@ -12,6 +12,10 @@
 
 namespace flat2d::localization::landmarks::testing {
 
+// The translation scale of random case i: every third case is far from the origin (up to
+// 1 km), where rounding in the Jacobians is largest.
+inline double TranslationScale(int i) { return i % 3 == 0 ? 1e3 : 10.0; }
+
 inline Eigen::Vector3d RandomVector(std::mt19937& rng, double scale) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   return scale * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));

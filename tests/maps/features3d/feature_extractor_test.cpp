@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hal/common/angles.hpp"
 #include "hal/sim/scene.hpp"
 #include "hal/sim/world_builder.hpp"
 #include "maps/features3d/feature_options.hpp"
@@ -15,7 +16,6 @@
 namespace flat2d::maps::features3d {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979;
 constexpr double kSensorHeightM = 1.9;
 
 FeatureExtractionOptions Shipped() {

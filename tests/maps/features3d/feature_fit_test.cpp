@@ -7,10 +7,10 @@
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
+#include "hal/common/angles.hpp"
+
 namespace flat2d::maps::features3d {
 namespace {
-
-constexpr double kRadToDeg = 180.0 / 3.14159265358979;
 
 FittingOptions Options() {
   FittingOptions options;

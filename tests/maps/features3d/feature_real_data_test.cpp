@@ -10,6 +10,7 @@
 
 #include "hal/cloud/kitti_bin_file.hpp"
 #include "hal/cloud/pcd_file.hpp"
+#include "hal/common/angles.hpp"
 #include "maps/features3d/feature_extractor.hpp"
 #include "maps/features3d/feature_options.hpp"
 #include "maps/range3d/range_frame.hpp"
@@ -17,8 +18,6 @@
 
 namespace flat2d::maps::features3d {
 namespace {
-
-constexpr double kRadToDeg = 180.0 / 3.14159265358979;
 
 FeatureExtractionOptions Shipped() {
   auto options = LoadFeatureOptions(std::filesystem::path(FLAT2D_SOURCE_DIR) / "packaging/config/features3d/features3d.textproto");

@@ -11,13 +11,13 @@
 namespace flat2d::maps::range3d {
 namespace {
 
-struct Frame {
+struct RoomFrame {
   SurfelCloud cloud;
   IndexImage image;
 };
 
 // The office room from 1.5 m up, looking along +x at the far wall (x = 3 m).
-Frame RenderFrame(float sigma_m) {
+RoomFrame RenderRoomFrame(float sigma_m) {
   Eigen::Matrix3f world_R_optical;
   world_R_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
@@ -26,13 +26,13 @@ Frame RenderFrame(float sigma_m) {
   std::mt19937 rng(7);
   const PinholeIntrinsics intrinsics;
   const auto depth = testing::RenderDepth(testing::OfficeRoom(), intrinsics, pose, sigma_m, rng);
-  Frame frame;
+  RoomFrame frame;
   CloudFromDepth(depth, RangeProjection::Pinhole(intrinsics), 10.0F, frame.cloud, frame.image);
   return frame;
 }
 
 TEST(CrossProductNormals, AWallsNormalIsExactAndFlat) {
-  Frame frame = RenderFrame(0.0F);
+  RoomFrame frame = RenderRoomFrame(0.0F);
   CrossProductNormals(CrossProductNormalOptions{}).Compute(frame.image, frame.cloud);
   const auto index = static_cast<std::size_t>(frame.image.at(240, 320));
   ASSERT_TRUE(frame.cloud.has_normal(index));
@@ -42,8 +42,8 @@ TEST(CrossProductNormals, AWallsNormalIsExactAndFlat) {
 }
 
 TEST(CrossProductNormals, AgreeWithTheEigenNormalsOnNoisyWalls) {
-  Frame fast = RenderFrame(0.003F);
-  Frame exact = fast;
+  RoomFrame fast = RenderRoomFrame(0.003F);
+  RoomFrame exact = fast;
   CrossProductNormals(CrossProductNormalOptions{}).Compute(fast.image, fast.cloud);
   SurfaceStatistics(SurfaceStatisticsOptions{}).Compute(RangeProjection::Pinhole({}), exact.image, exact.cloud);
   int compared = 0, agreeing = 0;
@@ -57,7 +57,7 @@ TEST(CrossProductNormals, AgreeWithTheEigenNormalsOnNoisyWalls) {
 }
 
 TEST(CrossProductNormals, NoNormalAcrossADepthJumpOrAHole) {
-  Frame frame = RenderFrame(0.0F);
+  RoomFrame frame = RenderRoomFrame(0.0F);
   // Punch a hole: pixels with no point around (240, 320).
   for (int row = 238; row <= 242; ++row) {
     for (int col = 318; col <= 322; ++col) frame.image.Set(row, col, -1, std::numeric_limits<float>::infinity());

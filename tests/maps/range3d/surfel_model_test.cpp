@@ -22,15 +22,15 @@ Eigen::Isometry3f CameraPose() {  // looking along +x at the far wall, from insi
   return pose;
 }
 
-struct Frame {
+struct ModelFrame {
   SurfelCloud cloud;
   IndexImage image;
 };
 
-Frame Render(const testing::BoxScene& scene, const RangeProjection& projection, float noise_m, std::uint32_t seed) {
+ModelFrame Render(const testing::BoxScene& scene, const RangeProjection& projection, float noise_m, std::uint32_t seed) {
   std::mt19937 rng(seed);
   const auto depth = testing::RenderDepth(scene, projection.intrinsics(), CameraPose(), noise_m, rng);
-  Frame frame;
+  ModelFrame frame;
   CloudFromDepth(depth, projection, 8.0F, frame.cloud, frame.image);
   SurfaceStatistics(SurfaceStatisticsOptions{}).Compute(projection, frame.image, frame.cloud);
   return frame;
@@ -47,7 +47,7 @@ RangeProjection SmallCamera() { return RangeProjection::Pinhole({320, 240, 262.5
 
 TEST(SurfelModel, TheSameFrameTwiceMergesPointForPoint) {
   const RangeProjection projection = SmallCamera();
-  const Frame frame = Render(testing::OfficeRoom(), projection, 0.0F, 1);
+  const ModelFrame frame = Render(testing::OfficeRoom(), projection, 0.0F, 1);
   SurfelModel model{SurfelModelOptions{}};
   const MergeStats first = model.Merge(frame.cloud, frame.image, projection, CameraPose());
   EXPECT_EQ(first.added, WithNormal(frame.cloud));
@@ -66,7 +66,7 @@ TEST(SurfelModel, TheSameFrameTwiceMergesPointForPoint) {
 // camera (Eq. 5.22), 1 / depth for LiDAR local maps (Eq. 6.4).
 TEST(SurfelModel, AMeasurementWeighsByItsDepth) {
   const RangeProjection projection = SmallCamera();
-  const Frame frame = Render(testing::OfficeRoom(), projection, 0.0F, 1);
+  const ModelFrame frame = Render(testing::OfficeRoom(), projection, 0.0F, 1);
   for (const DepthWeighting weighting : {DepthWeighting::kInverseSquare, DepthWeighting::kInverse}) {
     SurfelModelOptions options;
     options.weighting = weighting;
@@ -86,8 +86,8 @@ TEST(SurfelModel, ARemovedObjectIsSeenThroughAndItsWallKeptBehindAnAddedOne) {
   const RangeProjection projection = SmallCamera();
   testing::BoxScene empty = testing::OfficeRoom();
   empty.furniture.clear();
-  const Frame furnished = Render(testing::OfficeRoom(), projection, 0.0F, 1);
-  const Frame bare = Render(empty, projection, 0.0F, 1);
+  const ModelFrame furnished = Render(testing::OfficeRoom(), projection, 0.0F, 1);
+  const ModelFrame bare = Render(empty, projection, 0.0F, 1);
 
   // The furniture leaves: the bare room's beams pass through its points.
   SurfelModel leaving{SurfelModelOptions{}};
@@ -125,7 +125,7 @@ TEST(SurfelModel, MergingNoisyFramesAveragesTheNoiseDown) {
   const double sigma = 0.005;
   SurfelModel model{SurfelModelOptions{}};
   for (std::uint32_t seed = 1; seed <= 10; ++seed) {
-    const Frame frame = Render(testing::OfficeRoom(), projection, static_cast<float>(sigma), seed);
+    const ModelFrame frame = Render(testing::OfficeRoom(), projection, static_cast<float>(sigma), seed);
     (void)model.Merge(frame.cloud, frame.image, projection, CameraPose());
   }
   // The far wall is x = room.max.x: the spread of the points on it, normal to the wall.
@@ -149,7 +149,7 @@ TEST(SurfelModel, StaysWithinItsPointBudgetDroppingTheOldest) {
   SurfelModelOptions options;
   options.max_points = 20000;
   SurfelModel model(options);
-  const Frame frame = Render(testing::OfficeRoom(), projection, 0.0F, 1);
+  const ModelFrame frame = Render(testing::OfficeRoom(), projection, 0.0F, 1);
   const MergeStats stats = model.Merge(frame.cloud, frame.image, projection, CameraPose());
   EXPECT_EQ(model.size(), 20000U);
   EXPECT_EQ(stats.dropped, stats.added - 20000U);
@@ -157,7 +157,7 @@ TEST(SurfelModel, StaysWithinItsPointBudgetDroppingTheOldest) {
 
 TEST(SurfelModel, RendersWhatTheCameraSeesInItsOwnFrame) {
   const RangeProjection projection = SmallCamera();
-  const Frame frame = Render(testing::OfficeRoom(), projection, 0.0F, 1);
+  const ModelFrame frame = Render(testing::OfficeRoom(), projection, 0.0F, 1);
   SurfelModel model{SurfelModelOptions{}};
   (void)model.Merge(frame.cloud, frame.image, projection, CameraPose());
   SurfelCloud view;
