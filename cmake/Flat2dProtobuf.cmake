@@ -4,7 +4,7 @@
 # is compiled under its path from the repository root, so "hal/can/x.proto" is what
 # imports name, what the descriptor pool registers, and "hal/can/x.pb.h" what C++
 # includes. Generated code is compiled without flat2d's -Werror warning set: it is
-# protoc's code, not ours.
+# protoc's code, not ours; nor in unity batches.
 find_package(Protobuf REQUIRED)
 
 function(flat2d_proto_library name)
@@ -24,6 +24,8 @@ function(flat2d_proto_library name)
     list(APPEND generated ${outputs})
   endforeach()
   add_library(${name} ${generated})
+  # Every .pb.cc defines the same file-static tables (schemas, file_default_instances).
+  set_target_properties(${name} PROPERTIES UNITY_BUILD OFF)
   target_link_libraries(${name} PUBLIC protobuf::libprotobuf ${ARG_DEPS})
   target_include_directories(${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}>)
 endfunction()
