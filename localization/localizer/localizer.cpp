@@ -38,53 +38,6 @@ MatcherOptions MatcherOptionsFor() {
 
 }  // namespace
 
-std::string_view LocalizerStateName(LocalizerState state) {
-  switch (state) {
-    case LocalizerState::kInitializing: return "INITIALIZING";
-    case LocalizerState::kLocalized: return "LOCALIZED";
-    case LocalizerState::kDegraded: return "DEGRADED";
-    case LocalizerState::kLost: return "LOST";
-  }
-  return "UNKNOWN";
-}
-
-Status ValidateOptions(const LocalizerOptions& options) {
-  if (Status window = ValidateOptions(options.map_window); !window.ok()) return window;
-  if (Status graph = graph::ValidateOptions(options.graph); !graph.ok()) return MakeError("graph: " + graph.error().message);
-  if (!(options.point_range_m > 0.0)) return MakeError("point_range_m must be positive");
-  if (!(options.decimation_m > 0.0)) return MakeError("decimation_m must be positive");
-  if (options.max_scan_points < 20 || options.max_grid_points < options.max_scan_points) {
-    return MakeError("max_scan_points must be >= 20 and max_grid_points >= max_scan_points");
-  }
-  if (!(options.tracking_window.linear > 0.0) || !(options.tracking_window.angular > 0.0)) {
-    return MakeError("tracking_window must be positive");
-  }
-  if (!(options.min_match_sigma_m > 0.0) || !(options.min_match_sigma_rad > 0.0)) {
-    return MakeError("min_match_sigma_m and min_match_sigma_rad must be positive");
-  }
-  if (!(options.odometry_sigma_per_m >= 0.0) || !(options.odometry_sigma_rad_per_m >= 0.0)) {
-    return MakeError("odometry_sigma_per_m and odometry_sigma_rad_per_m must be >= 0");
-  }
-  if (options.solve_iterations < 1) return MakeError("solve_iterations must be >= 1");
-  if (options.relocalization_confirmations < 0) return MakeError("relocalization_confirmations must be >= 0");
-  if (options.degraded_after_ns <= 0 || options.lost_after_ns < options.degraded_after_ns ||
-      options.initial_lost_after_ns <= 0) {
-    return MakeError("need 0 < degraded_after <= lost_after and initial_lost_after > 0");
-  }
-  if (options.max_tracking_window_m < options.tracking_window.linear ||
-      options.max_tracking_window_m > options.relocalization_max_radius_m) {
-    return MakeError("max_tracking_window_m must be in [tracking_window, relocalization_max_radius_m]");
-  }
-  if (!(options.relocalization_max_peak_ratio > 0.0 && options.relocalization_max_peak_ratio <= 1.0)) {
-    return MakeError("relocalization_max_peak_ratio must be in (0, 1]");
-  }
-  if (!(options.relocalization_radius_m > 0.0) || options.relocalization_max_radius_m < options.relocalization_radius_m ||
-      !(options.relocalization_growth >= 1.0)) {
-    return MakeError("relocalization radius must be positive, growth >= 1, maximum >= the start");
-  }
-  return Status::Ok();
-}
-
 Result<Localizer> Localizer::Create(maps::PriorMapReader map, const LocalizerOptions& options) {
   if (Status valid = ValidateOptions(options); !valid.ok()) return valid.error();
   auto window = MapWindow::Create(map, options.map_window);
@@ -420,19 +373,6 @@ void Localizer::UpdateState(TimeNs time_ns, double position_sigma_m) {
   } else {
     state_ = ever_localized_ ? LocalizerState::kLocalized : LocalizerState::kInitializing;
   }
-}
-
-GlobalPose ComposeGlobalPose(const LocalizationFix& fix, const PoseHistory& odometry, TimeNs time_ns) {
-  GlobalPose pose;
-  pose.time_ns = time_ns;
-  pose.state = fix.state;
-  if (!fix.has_fix) return pose;
-  const RelativeMotion motion = odometry.Between(fix.node_ns, time_ns);
-  if (!motion.ok()) return pose;
-  pose.ok = true;
-  pose.global_T_vehicle = fix.node_pose * motion.a_T_b;
-  pose.covariance = ComposeCovariance(fix.node_pose, fix.node_covariance, motion.a_T_b, motion.covariance);
-  return pose;
 }
 
 GlobalPose Localizer::PoseAt(TimeNs time_ns, const PoseHistory& odometry) const {
