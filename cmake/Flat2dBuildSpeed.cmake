@@ -1,7 +1,7 @@
-# Build time on a small machine (CI has two cores; docs/benchmarks.md, "Build time").
+# Build time on a small machine (CI has two cores; docs/benchmarks.md, "Build and CI time").
 #
-# Linking: lld when the compiler can use it; it links the 200-odd test executables
-# several times faster than GNU ld.
+# Linking: lld when the compiler can use it; GNU ld is the slowest part of linking the
+# 127 test executables and the tools.
 include(CheckLinkerFlag)
 check_linker_flag(CXX "-fuse-ld=lld" FLAT2D_HAVE_LLD)
 if(FLAT2D_HAVE_LLD)

@@ -1,8 +1,8 @@
 #include "daemon/service/api_handler.hpp"
 
-#include "hal/common/time.hpp"
-
 #include <cmath>
+
+#include "hal/common/time.hpp"
 
 namespace flat2d::daemon {
 namespace {

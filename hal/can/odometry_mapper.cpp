@@ -1,12 +1,11 @@
 #include "hal/can/odometry_mapper.hpp"
 
-#include "hal/common/angles.hpp"
-
 #include <cctype>
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::hal::can {
 namespace {

@@ -31,7 +31,6 @@ bool IsLoopbackFamilyIpv6(std::uint32_t family) {
   return family == 24 || family == 28 || family == 30 || family == 10;
 }
 
-constexpr std::size_t kIpv4MinHeaderBytes = 20;
 constexpr std::uint8_t kIpProtocolUdp = 17;
 constexpr std::uint16_t kIpv4MoreFragmentsFlag = 0x2000;
 constexpr std::uint16_t kIpv4FragmentOffsetMask = 0x1FFF;

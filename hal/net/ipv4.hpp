@@ -20,6 +20,7 @@ inline constexpr std::uint32_t kIpv4Loopback = 0x7F000001;   // 127.0.0.1
 inline constexpr std::uint32_t kIpv4Broadcast = 0xFFFFFFFF;  // 255.255.255.255
 
 inline constexpr std::size_t kEthernetHeaderBytes = 14;  // without VLAN tags
+inline constexpr std::size_t kIpv4MinHeaderBytes = 20;  // without options
 inline constexpr std::size_t kUdpHeaderBytes = 8;
 
 // The largest payload one IPv4/UDP datagram can carry: 65535 - 20 (IPv4) - 8 (UDP).

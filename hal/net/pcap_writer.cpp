@@ -16,8 +16,7 @@
 namespace flat2d::hal::net {
 namespace {
 
-constexpr std::size_t kIpv4HeaderBytes = 20;
-constexpr std::size_t kHeaderBytes = kEthernetHeaderBytes + kIpv4HeaderBytes + kUdpHeaderBytes;
+constexpr std::size_t kHeaderBytes = kEthernetHeaderBytes + kIpv4MinHeaderBytes + kUdpHeaderBytes;
 constexpr std::size_t kMaxFrameBytes = kHeaderBytes + kMaxUdpPayloadBytes;
 constexpr std::uint8_t kIpv4DefaultTtl = 64;
 constexpr std::uint16_t kIpv4DontFragment = 0x4000;
@@ -55,10 +54,10 @@ void WriteHeaders(std::span<std::uint8_t> frame, const UdpDatagram& datagram,
   StoreBe16(frame, 12, 0x0800);  // EtherType IPv4
 
   const auto udp_length = static_cast<std::uint16_t>(kUdpHeaderBytes + datagram.payload.size());
-  std::span<std::uint8_t> ip = frame.subspan(kEthernetHeaderBytes, kIpv4HeaderBytes);
+  std::span<std::uint8_t> ip = frame.subspan(kEthernetHeaderBytes, kIpv4MinHeaderBytes);
   ip[0] = 0x45;  // version 4, IHL 5 words
   ip[1] = 0;     // DSCP/ECN
-  StoreBe16(ip, 2, static_cast<std::uint16_t>(kIpv4HeaderBytes + udp_length));
+  StoreBe16(ip, 2, static_cast<std::uint16_t>(kIpv4MinHeaderBytes + udp_length));
   StoreBe16(ip, 4, ip_id);
   StoreBe16(ip, 6, kIpv4DontFragment);
   ip[8] = kIpv4DefaultTtl;
@@ -68,7 +67,7 @@ void WriteHeaders(std::span<std::uint8_t> frame, const UdpDatagram& datagram,
   StoreBe32(ip, 16, datagram.destination.address);
   StoreBe16(ip, 10, Ipv4HeaderChecksum(ip));
 
-  std::span<std::uint8_t> udp = frame.subspan(kEthernetHeaderBytes + kIpv4HeaderBytes);
+  std::span<std::uint8_t> udp = frame.subspan(kEthernetHeaderBytes + kIpv4MinHeaderBytes);
   StoreBe16(udp, 0, datagram.source.port);
   StoreBe16(udp, 2, datagram.destination.port);
   StoreBe16(udp, 4, udp_length);

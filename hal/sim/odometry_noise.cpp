@@ -1,9 +1,9 @@
 #include "hal/sim/odometry_noise.hpp"
 
-#include "hal/common/angles.hpp"
-
 #include <cmath>
 #include <numbers>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::hal::sim {
 namespace {

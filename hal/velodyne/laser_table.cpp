@@ -1,9 +1,8 @@
 #include "hal/velodyne/laser_table.hpp"
 
-#include "hal/common/angles.hpp"
-
 #include <cassert>
-#include <numbers>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::hal::velodyne {
 namespace {

@@ -22,7 +22,7 @@ TimeNs ResolveHourRelative(std::uint32_t us_past_hour, TimeNs reference_ns) {
 }
 
 std::int64_t DeviceStepUs(std::uint32_t previous_us_past_hour, std::uint32_t us_past_hour) {
-  constexpr std::int64_t kUsPerHourSigned = kNsPerHour / kNsPerUs;
+  constexpr std::int64_t kUsPerHourSigned = kUsPerHour;
   std::int64_t step = (static_cast<std::int64_t>(us_past_hour) - previous_us_past_hour) % kUsPerHourSigned;
   if (step > kUsPerHourSigned / 2) step -= kUsPerHourSigned;
   if (step < -kUsPerHourSigned / 2) step += kUsPerHourSigned;

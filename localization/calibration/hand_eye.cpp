@@ -1,14 +1,13 @@
 #include "localization/calibration/hand_eye.hpp"
 
-#include "hal/common/angles.hpp"
-
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <string>
 
 #include <Eigen/Eigenvalues>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::localization::calibration {
 namespace {

@@ -1,11 +1,10 @@
 #include "localization/evaluation/feature_accuracy.hpp"
 
-#include "hal/common/angles.hpp"
-
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <optional>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::localization::evaluation {
 namespace {

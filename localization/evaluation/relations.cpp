@@ -1,14 +1,13 @@
 #include "localization/evaluation/relations.hpp"
 
-#include "hal/common/angles.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 #include <string>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::localization::evaluation {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <numbers>
 
+#include "hal/common/angles.hpp"
 #include "hal/trajectory/pose_interpolation.hpp"
 #include "localization/registration/frame_registration.hpp"
 #include "localization/tools/deskewed_drive.hpp"
@@ -95,7 +95,6 @@ Result<GroundEstimate> EstimateGround(const CalibrateOptions& options, const Cal
   });
   if (!walked.ok()) return walked.error();
   if (height.empty()) return MakeError(drive.capture.string() + ": no ground plane found under the sensor (is the mounting's guess upright?)");
-  constexpr double kRadToDeg = 180.0 / std::numbers::pi;
   ground.roll_deg = Median(roll) * kRadToDeg;
   ground.pitch_deg = Median(pitch) * kRadToDeg;
   ground.height_m = Median(height);

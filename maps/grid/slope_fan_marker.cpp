@@ -1,7 +1,6 @@
 #include "maps/grid/slope_fan_marker.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <span>
 
 #include "hal/common/angles.hpp"

@@ -1,7 +1,6 @@
 #include "hal/velodyne/calibration_yaml.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
-#include <numbers>
 
 #include <gtest/gtest.h>
 

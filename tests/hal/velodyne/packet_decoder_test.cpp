@@ -3,8 +3,6 @@
 // equations (x forward, y left: x = R cos(w) cos(a), y = -R cos(w) sin(a), z = R sin(w)).
 #include "hal/velodyne/packet_decoder.hpp"
 
-#include <numbers>
-
 #include <gtest/gtest.h>
 
 #include "hal/common/angles.hpp"

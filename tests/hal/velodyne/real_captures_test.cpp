@@ -2,7 +2,6 @@
 // from shared/data/PROVENANCE.md (measured there with an independent reader): packet
 // counts, product, return mode, azimuth wraps (complete revolutions = wraps - 1).
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include <gtest/gtest.h>

@@ -1,7 +1,6 @@
 #include "hal/velodyne/revolution.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -10,7 +9,6 @@
 
 namespace flat2d::hal::velodyne {
 namespace {
-
 
 Fan MakeFan(double azimuth_deg, TimeNs stamp, bool with_return = true) {
   Fan fan;
