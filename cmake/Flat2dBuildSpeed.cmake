@@ -14,6 +14,7 @@ endif()
 # therefore must not repeat within a target. GCC reads a batched .cpp as an included
 # file and then warns that a class with a member of an anonymous-namespace type has
 # internal linkage (-Wsubobject-linkage), which is true of every such class in a .cpp.
-if(CMAKE_UNITY_BUILD)
+# Clang has no such warning.
+if(CMAKE_UNITY_BUILD AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   add_compile_options(-Wno-subobject-linkage)
 endif()

@@ -27,8 +27,6 @@
 
 namespace flat2d::localization::landmarks {
 
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-
 // The dead reckoning's noise, per factor between two pose nodes. Standard deviations grow
 // linearly with the motion between the nodes (a scale or heading bias of the odometry
 // grows that way; a random walk would grow with its square root, and is smaller over the

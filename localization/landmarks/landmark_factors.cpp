@@ -6,7 +6,6 @@ namespace {
 
 using Matrix46d = Eigen::Matrix<double, 4, 6>;
 using Matrix64d = Eigen::Matrix<double, 6, 4>;
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 // s of F2: flips the prediction onto the measurement's orientation.
 double OrientationSign(const Plane& predicted, const Plane& measured) {

@@ -49,6 +49,8 @@
 
 namespace flat2d::localization::landmarks {
 
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
 // F1.
 Eigen::Isometry3d RetractPose(const Eigen::Isometry3d& world_T_sensor, const Vector6d& delta);
 

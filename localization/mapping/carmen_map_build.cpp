@@ -70,7 +70,7 @@ std::vector<Eigen::Vector2d> ScanPointsOf(const hal::carmen::LaserScan& scan, do
   std::vector<Eigen::Vector2d> points;
   points.reserve(scan.ranges.size());
   for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-    const double range = scan.ranges[i];
+    const double range = static_cast<double>(scan.ranges[i]);
     if (!std::isfinite(range) || range < min_range_m || range > max_range_m) continue;
     if (scan.max_range > 0.0 && range >= scan.max_range) continue;
     const double bearing = scan.angle_min + static_cast<double>(i) * scan.angle_increment;

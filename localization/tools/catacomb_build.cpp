@@ -267,7 +267,8 @@ class CatacombBuilder {
     auto out_of_range = [&](int reference, int current) {
       return reference >= maps || current >= maps || reference == current;
     };
-    for (const auto& [reference, current] : options_.edits.removals) {
+    for (const auto& removal : options_.edits.removals) {
+      const int reference = removal.first, current = removal.second;  // lambdas cannot capture bindings in clang 14
       if (out_of_range(reference, current)) return MakeError(EditError("remove", reference, current));
       std::erase_if(accepted_, [&](std::size_t record) {
         const auto& c = result_.closures[record].candidate;

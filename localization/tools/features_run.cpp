@@ -75,7 +75,7 @@ class Judge {
 class CaptureFeatures {
  public:
   CaptureFeatures(const FeaturesRunOptions& options, const FeaturesHandler& handler)
-      : options_(options), handler_(handler), extractors_(options.extraction),
+      : handler_(handler), extractors_(options.extraction),
         up_((options.vehicle_T_sensor.linear().transpose() * Eigen::Vector3d::UnitZ()).cast<float>()) {
     if (options.world) judge_.emplace(options);
   }
@@ -98,7 +98,6 @@ class CaptureFeatures {
   }
 
  private:
-  const FeaturesRunOptions& options_;
   const FeaturesHandler& handler_;
   Extractors extractors_;
   const Eigen::Vector3f up_;

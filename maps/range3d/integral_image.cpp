@@ -7,7 +7,8 @@ namespace flat2d::maps::range3d {
 namespace {
 
 PointMoments MomentsOf(const Eigen::Vector3f& p) {
-  const double x = p.x(), y = p.y(), z = p.z();
+  const Eigen::Vector3d q = p.cast<double>();
+  const double x = q.x(), y = q.y(), z = q.z();
   return {1.0, x, y, z, x * x, x * y, x * z, y * y, y * z, z * z};
 }
 

@@ -47,7 +47,7 @@ TEST(TumWriter, WritesLinesAndRefusesBadPoses) {
   EXPECT_TRUE(writer->Write(1'000'000'000, Pose(1, 2, 3, 0.5)).ok());
   EXPECT_TRUE(writer->Write(1'005'000'000, Pose(1, 2, 3, 0.5)).ok());
   EXPECT_FALSE(writer->Write(-1, Pose(0, 0, 0, 0)).ok());
-  EXPECT_FALSE(writer->Write(2'000'000'000, Pose(NAN, 0, 0, 0)).ok());
+  EXPECT_FALSE(writer->Write(2'000'000'000, Pose(std::nan(""), 0, 0, 0)).ok());
   EXPECT_EQ(writer->poses_written(), 2u);
   ASSERT_TRUE(writer->Close().ok());
   EXPECT_EQ(testing::ReadBytes(dir.path() / "t.tum"),

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <limits>
 #include <ostream>
 #include <cmath>
 #include <numbers>
@@ -102,7 +103,7 @@ TEST_P(EncodeDecode, EveryRecordDecodesToItsContent) {
             content.block_azimuth_units[static_cast<std::size_t>(block)] +
             gap * (firing.time_offset_us - block_start_us) / schedule.block_period_us() -
             laser.rot_correction_rad / kUnitsToRad;
-        EXPECT_LE(AngleDiffUnits(r.azimuth_rad, expected_units * kUnitsToRad), 1.01);
+        EXPECT_LE(AngleDiffUnits(static_cast<double>(r.azimuth_rad), expected_units * kUnitsToRad), 1.01);
         EXPECT_NEAR(static_cast<double>(fan.stamp_ns + r.time_offset_ns),
                     firing.time_offset_us * 1e3, 1.0);
       }
@@ -206,7 +207,7 @@ TEST(RawDistance, InvertsTheDecoderWithinHalfAUnit) {
     EXPECT_EQ(RawDistance(-1.0, table, 0), 0);
     EXPECT_EQ(RawDistance(0.4 * resolution, table, 0), 0);  // rounds to 0 units: no return
     EXPECT_EQ(RawDistance(std::nan(""), table, 0), 0);
-    EXPECT_EQ(RawDistance(INFINITY, table, 0), 0);
+    EXPECT_EQ(RawDistance(std::numeric_limits<double>::infinity(), table, 0), 0);
   }
 }
 
