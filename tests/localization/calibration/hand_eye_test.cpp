@@ -12,7 +12,6 @@
 namespace flat2d::localization::calibration {
 namespace {
 
-
 Eigen::Isometry3d Pose(double x, double y, double z, double roll_deg, double pitch_deg, double yaw_deg) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = Eigen::Vector3d(x, y, z);
@@ -61,12 +60,13 @@ std::vector<Eigen::Isometry3d> SensorTrack(const std::vector<Eigen::Isometry3d>&
   return track;
 }
 
+// height_metres 0: the height is not judged.
 void ExpectNear(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth, double metres, double degrees,
-                bool height_too) {
+                double height_metres) {
   const Eigen::Vector3d d = estimate.translation() - truth.translation();
   EXPECT_LT(d.head<2>().norm(), metres) << d.transpose();
-  if (height_too) {
-    EXPECT_LT(std::abs(d.z()), metres) << d.transpose();
+  if (height_metres > 0.0) {
+    EXPECT_LT(std::abs(d.z()), height_metres) << d.transpose();
   }
   EXPECT_LT(Eigen::AngleAxisd(estimate.rotation().transpose() * truth.rotation()).angle(), degrees * kDegToRad);
 }
@@ -77,7 +77,7 @@ TEST(HandEye, PlanarDriveRecoversAllButTheHeight) {
   ASSERT_GT(pairs.size(), 100U);
   auto result = SolveHandEye(pairs, kGuess);
   ASSERT_TRUE(result.ok()) << result.error().message;
-  ExpectNear(result->vehicle_T_sensor, kTruth, 0.01, 0.05, false);
+  ExpectNear(result->vehicle_T_sensor, kTruth, 0.01, 0.05, 0.0);
   // The height is not observable on a plane: it stays where the guess put it.
   EXPECT_NEAR(result->vehicle_T_sensor.translation().z(), kGuess.translation().z(), 1e-9);
   const std::array<bool, 6> expected{true, true, false, true, true, true};
@@ -93,7 +93,9 @@ TEST(HandEye, RollingAndPitchingMakesTheHeightObservable) {
   const auto vehicle = VehiclePath(true, true);
   auto result = SolveHandEye(MotionPairs(SensorTrack(vehicle, 2), vehicle), kGuess);
   ASSERT_TRUE(result.ok()) << result.error().message;
-  ExpectNear(result->vehicle_T_sensor, kTruth, 0.01, 0.05, true);
+  // Rolls of 3 deg see the height only weakly: over the tracker noise of seeds 1-100 its
+  // error was 3.2 mm median, 6.7 mm p90 and 10.6 mm at most (the solver's own sigma: 2 cm).
+  ExpectNear(result->vehicle_T_sensor, kTruth, 0.01, 0.05, 0.015);
   for (bool observable : result->observable) EXPECT_TRUE(observable);
 }
 
@@ -134,7 +136,7 @@ TEST(HandEye, WrongSensorMotionsAreDownWeighted) {
   for (std::size_t i = 0; i < pairs.size(); i += 10) pairs[i].sensor_motion = pairs[i].sensor_motion * Pose(1.0, 0.0, 0.0, 0.0, 0.0, 10.0);
   auto result = SolveHandEye(pairs, kGuess);
   ASSERT_TRUE(result.ok()) << result.error().message;
-  ExpectNear(result->vehicle_T_sensor, kTruth, 0.02, 0.1, false);
+  ExpectNear(result->vehicle_T_sensor, kTruth, 0.02, 0.1, 0.0);
   EXPECT_LE(result->inliers, result->pairs - static_cast<int>(pairs.size() / 10));
 }
 
@@ -160,7 +162,7 @@ TEST(HandEye, WheelScaleErrorIsNotALeverArm) {
   for (MotionPair& pair : pairs) pair.vehicle_motion.translation() *= scale;
   auto scaled = SolveHandEye(pairs, kGuess);
   ASSERT_TRUE(scaled.ok()) << scaled.error().message;
-  ExpectNear(scaled->vehicle_T_sensor, kTruth, 0.01, 0.05, false);
+  ExpectNear(scaled->vehicle_T_sensor, kTruth, 0.01, 0.05, 0.0);
   EXPECT_EQ(OdometryDistanceScale({}), 1.0);
 }
 
