@@ -199,13 +199,7 @@ TEST(LandmarkSlam, PoleThroughTheWorldOriginIsEstimated) {
 TEST(LandmarkSlam, OfficeSizedDriveStaysAccurate) {
   const unsigned seed = 8206;
   std::printf("seed %u\n", seed);
-  std::mt19937 world_rng(seed), noise_rng(seed + 1), corruption_rng(seed + 2);
-  DriveSettings settings;
-  settings.loop_radius_m = 68.0;
-  settings.spacing_m = 0.12;
-  settings.revolutions = 3600;
-  settings.odometry_heading_bias = 1e-4;  // ~20 deg over the drive
-  const Drive drive = MakeDrive(testing::MakeAvenueWorld(world_rng, settings.loop_radius_m), settings, noise_rng, corruption_rng);
+  const Drive drive = testing::OfficeSizedDrive(seed);
   const SlamRun run = RunSlam(drive, LandmarkSlamOptions{});
   EXPECT_LE(run.slam_rmse_m * 3.0, run.odometry_rmse_m);
   EXPECT_LE(run.slam_rmse_m, 0.5);

@@ -225,4 +225,14 @@ Drive MakeDrive(const World& world, const DriveSettings& s, std::mt19937& noise_
   return drive;
 }
 
+Drive OfficeSizedDrive(unsigned seed) {
+  std::mt19937 world_rng(seed), noise_rng(seed + 1), corruption_rng(seed + 2);
+  DriveSettings settings;
+  settings.loop_radius_m = 68.0;
+  settings.spacing_m = 0.12;
+  settings.revolutions = 3600;
+  settings.odometry_heading_bias = 1e-4;
+  return MakeDrive(MakeAvenueWorld(world_rng, settings.loop_radius_m), settings, noise_rng, corruption_rng);
+}
+
 }  // namespace flat2d::localization::landmarks::testing
