@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <filesystem>
 #include <thread>
 
 #include "daemon/service/api_handler.hpp"
@@ -47,6 +48,16 @@ double PositionError(const testing::SimulatedDrive& drive, const Sample& sample)
 }
 
 localization::Se2 TruthAtStart(const testing::SimulatedDrive& drive) { return drive.truth.front().pose; }
+
+// Under ctest this runs first, as the fixture of the replays below (tests/daemon/
+// CMakeLists.txt): it makes the drive they read from FLAT2D_SHARED_DRIVE's folder.
+TEST(DaemonReplayDrive, IsMadeAfreshForTheReplays) {
+  if (!testing::RemakeSharedDrive()) GTEST_SKIP() << "FLAT2D_SHARED_DRIVE is unset: each process makes its own drive";
+  const testing::SimulatedDrive& drive = testing::OccludersDrive();
+  EXPECT_TRUE(std::filesystem::exists(drive.map)) << drive.map;
+  EXPECT_TRUE(std::filesystem::exists(drive.capture)) << drive.capture;
+  EXPECT_FALSE(drive.truth.empty());
+}
 
 TEST(DaemonReplay, TracksTheDriveAndAllocatesNothingAfterWarmUp) {
   const testing::SimulatedDrive& drive = testing::OccludersDrive();

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <optional>
 
 #include "hal/sim/simulation.hpp"
 #include "hal/sim/simulation_sinks.hpp"
@@ -61,23 +63,51 @@ void BuildMap(const std::filesystem::path& mapping, const std::filesystem::path&
   ASSERT_TRUE(maps::WritePriorMap(mosaic, out, maps::PriorMapWriteOptions{}, {}).ok());
 }
 
-SimulatedDrive Make() {
+constexpr char kCompleteMarker[] = "complete";
+
+// The files of a drive made in `dir`.
+SimulatedDrive At(const std::filesystem::path& dir) {
   SimulatedDrive drive;
-  drive.dir = std::filesystem::temp_directory_path() / ("flat2d_daemon_drive_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(drive.dir);
-  Simulate(0, 5, drive.dir / "mapping");
-  Simulate(2, 6, drive.dir / "drive2");
-  drive.map = drive.dir / "occluders.f2m";
-  BuildMap(drive.dir / "mapping", drive.map);
-  drive.capture = drive.dir / "drive2" / hal::sim::kLidarFile;
-  drive.can_log = drive.dir / "drive2" / hal::sim::kCanFile;
-  drive.dbc = drive.dir / "drive2" / hal::sim::kDbcFile;
-  auto truth = localization::evaluation::ReadTrajectory(drive.dir / "drive2" / hal::sim::kTruthFile);
-  EXPECT_TRUE(truth.ok());
+  drive.dir = dir;
+  drive.map = dir / "occluders.f2m";
+  drive.capture = dir / "drive2" / hal::sim::kLidarFile;
+  drive.can_log = dir / "drive2" / hal::sim::kCanFile;
+  drive.dbc = dir / "drive2" / hal::sim::kDbcFile;
+  auto truth = localization::evaluation::ReadTrajectory(dir / "drive2" / hal::sim::kTruthFile);
+  EXPECT_TRUE(truth.ok()) << truth.error().message;
   if (truth.ok()) drive.truth = std::move(*truth);
-  static const std::filesystem::path scratch = drive.dir;
-  std::atexit([] { std::filesystem::remove_all(scratch); });
   return drive;
+}
+
+// Simulates both drives and builds the map in `dir`; `complete` is written last, so a
+// folder without it (an interrupted run) is never read as a drive.
+void MakeIn(const std::filesystem::path& dir) {
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  Simulate(0, 5, dir / "mapping");
+  Simulate(2, 6, dir / "drive2");
+  if (::testing::Test::HasFatalFailure()) return;
+  BuildMap(dir / "mapping", dir / "occluders.f2m");
+  if (::testing::Test::HasFatalFailure()) return;
+  std::ofstream(dir / kCompleteMarker) << "made by tests/daemon/simulated_drive.cpp\n";
+}
+
+std::optional<std::filesystem::path> SharedDir() {
+  const char* shared = std::getenv("FLAT2D_SHARED_DRIVE");
+  if (shared == nullptr || *shared == '\0') return std::nullopt;
+  return std::filesystem::path(shared);
+}
+
+SimulatedDrive Make() {
+  if (const auto shared = SharedDir()) {
+    if (!std::filesystem::exists(*shared / kCompleteMarker)) MakeIn(*shared);
+    return At(*shared);
+  }
+  static const std::filesystem::path scratch =
+      std::filesystem::temp_directory_path() / ("flat2d_daemon_drive_" + std::to_string(::getpid()));
+  MakeIn(scratch);
+  std::atexit([] { std::filesystem::remove_all(scratch); });
+  return At(scratch);
 }
 
 }  // namespace
@@ -85,6 +115,13 @@ SimulatedDrive Make() {
 const SimulatedDrive& OccludersDrive() {
   static const SimulatedDrive drive = Make();
   return drive;
+}
+
+bool RemakeSharedDrive() {
+  const auto shared = SharedDir();
+  if (!shared) return false;
+  MakeIn(*shared);
+  return true;
 }
 
 std::unique_ptr<localization::LocalizationPipeline> MakeShippedPipeline(const SimulatedDrive& drive) {
