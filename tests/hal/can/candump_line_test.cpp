@@ -101,7 +101,7 @@ TEST(CandumpLine, CanFdFrames) {
   const Parsed empty = Parse("(1.000000) can0 123##0");
   EXPECT_TRUE(empty.frame.fd);
   EXPECT_EQ(empty.frame.length, 0);
-  const Parsed full = Parse("(1.000000) can0 12345678##5" + std::string(128, 'E'));
+  const Parsed full = Parse(std::string("(1.000000) can0 12345678##5").append(128, 'E'));
   ASSERT_EQ(full.line.kind, CandumpLineKind::kFrame);
   EXPECT_TRUE(full.frame.extended && full.frame.fd);
   EXPECT_EQ(full.frame.fd_flags, 0x5);  // newer candump prints CANFD_FDF (0x04) as well
@@ -153,8 +153,8 @@ struct MalformedCase {
 };
 
 TEST(CandumpLine, MalformedLinesSayWhy) {
-  const std::string fd_9_bytes = "(1.000000) can0 123##0" + std::string(18, '0');
-  const std::string fd_65_bytes = "(1.000000) can0 123##0" + std::string(130, '0');
+  const std::string fd_9_bytes = std::string("(1.000000) can0 123##0").append(18, '0');
+  const std::string fd_65_bytes = std::string("(1.000000) can0 123##0").append(130, '0');
   const std::vector<MalformedCase> cases = {
       {"can0 123#11", CandumpError::kNoTimestamp},
       {"garbage", CandumpError::kNoTimestamp},
