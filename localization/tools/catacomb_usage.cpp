@@ -24,15 +24,15 @@ dynamic covariance scaling. Writes:
                          the --truth below)
   DIR/map.f2m, map.png   the 2D prior map gridded at the optimized poses (captures only)
 Options of build --mode nicp DRIVE: --can LOG --dbc DBC --odometry CONFIG, --config FILE,
---anchor FILE.tum, --method M, --iterations N, --max-frames N, --no-deskew,
---inverse-depth-weights, --planar, --ground-clearance M, --ground-range M, --no-map, --json.
+--anchor FILE.tum, --method M, --iterations N, --max-frames N, --min-inlier-share S,
+--no-deskew, --inverse-depth-weights, --planar, --ground-clearance M, --ground-range M, --no-map, --json.
 Also:
   --local-map-distance M  a new local map after M metres of travel (default 5)
   --local-map-angle RAD   ... or once the sensor has turned RAD from the map's first
                           revolution (default 0: no such cut)
   --local-map-overlap S   ... or when a revolution's NICP inliers are less than share S of its
-                          points with normals (default 0: none; below 0.3 the registration
-                          fails, which always cuts)
+                          points with normals (default 0: none; below --min-inlier-share
+                          the registration fails, which always cuts)
   --continuous-tracking   track against one merged model across the cuts (each local map
                           merges its revolutions into its own model besides) instead of
                           starting each map's tracking afresh (thesis 6.3)

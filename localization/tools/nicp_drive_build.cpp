@@ -169,6 +169,7 @@ class RevolutionTracker {
     tracker.lidar_column_scales = options_.lidar_pyramid;
     tracker.iterations_per_level = options_.lidar_pyramid.size() > 1 ? options_.pyramid_iterations : options_.nicp.iterations;
     tracker.model = options_.model;
+    tracker.min_inlier_share = options_.min_inlier_share;
     model_tracker_.emplace(first.levels.front().projection, tracker);
     (void)model_tracker_->Track(first, world_T_sensor_, Eigen::Isometry3d::Identity());
   }

@@ -50,6 +50,9 @@ first scan's vehicle frame).
                         one level, --iterations there)
   --pyramid-iterations N
                         iterations at each level of a pyramid (default 3)
+  --min-inlier-share S  with --tracking model: a revolution whose NICP inliers are fewer
+                        than share S of its points with normals has failed to register and
+                        is not merged (default 0.2)
   --max-frames N        only the first N complete revolutions
   --keyframe-distance M --keyframe-angle RAD
                         with --tracking keyframe: a keyframe is kept until the sensor is M
@@ -125,6 +128,7 @@ bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a) {
   } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
   else if (arg == "--pyramid") a.options.lidar_pyramid = ParsePyramid(arg, value(), a.options.frames.lidar_columns);
   else if (arg == "--pyramid-iterations") a.options.pyramid_iterations = integer(1000);
+  else if (arg == "--min-inlier-share") a.options.min_inlier_share = static_cast<float>(maps::cli::ParseNumber(kTool, arg, value()));
   else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
   else if (arg == "--no-deskew") a.options.deskew = false;
   else if (arg == "--inverse-depth-weights") a.options.nicp.inverse_depth_weights = true;
@@ -148,6 +152,8 @@ void CheckNicpDriveArgs(const NicpDriveArgs& a, const std::string& mode, const c
   if (can != a.options.dbc.has_value() || can != a.options.odometry_config.has_value()) {
     Fail(1, "build --mode " + mode + " DRIVE: --can, --dbc and --odometry go together");
   }
+  const float share = a.options.min_inlier_share;
+  if (!(share >= 0.0F && share <= 1.0F)) Fail(1, "build --mode " + mode + " DRIVE: --min-inlier-share is a share in [0, 1]");
 }
 
 namespace {

@@ -137,8 +137,15 @@ class Catacomb(unittest.TestCase):
         g = json.loads(angle.stdout)
         self.assertGreater(g["cuts_angle"], 0)
         self.assertGreater(g["local_maps"], p["local_maps"])
+        # Every registration pairs fewer inliers than all its points: each one fails, is not
+        # merged, and cuts the map.
+        strict = run(MAP, *base, "--min-inlier-share", "1", "--out", os.path.join(WORK, "cuts_strict"))
+        self.assertEqual(strict.returncode, 0, strict.stderr)
+        f = json.loads(strict.stdout)
+        self.assertEqual((f["failures"], f["cuts_failure"], f["local_maps"]), (19, 19, 20))
+        self.assertEqual(p["failures"], 0)
         for flag, value in (("--local-map-overlap", "1.5"), ("--local-map-overlap", "-0.1"), ("--local-map-angle", "-1"),
-                            ("--ambiguity-shift", "-3")):
+                            ("--ambiguity-shift", "-3"), ("--min-inlier-share", "1.5"), ("--min-inlier-share", "-0.1")):
             bad = run(MAP, *base, flag, value, "--out", os.path.join(WORK, "cuts_bad"))
             self.assertEqual(bad.returncode, 1, flag)
             self.assertIn(flag, bad.stderr)
