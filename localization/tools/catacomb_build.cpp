@@ -1,5 +1,6 @@
 #include "localization/tools/catacomb_build.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <random>
@@ -158,7 +159,8 @@ class CatacombBuilder {
       factor.from = i;
       factor.to = i + 1;
       factor.measurement = tracked_[i].world_T_map.inverse() * tracked_[i + 1].world_T_map;
-      factor.information = InformationOf(tracked_[i].ends_in_failure ? options_.odometry : options_.tracking);
+      const FactorSigma& tracking = options_.drive.planar ? options_.planar_tracking : options_.tracking;
+      factor.information = InformationOf(tracked_[i].ends_in_failure ? options_.odometry : tracking);
       result_.graph.betweens.push_back(factor);
     }
   }
@@ -200,7 +202,8 @@ class CatacombBuilder {
     record.candidate = candidate;
     record.injected = injected;
     record.validation = loops::ValidateClosure(**reference, **current, candidate.reference_T_current, options_.validation);
-    if (record.validation.accepted && options_.alias_neighbours > 0) {
+    if (record.validation.accepted && options_.alias_neighbours > 0 &&
+        (options_.alias_everywhere || ChainCrossesFailure(candidate.reference, candidate.current))) {
       auto alias = FindAlias(candidate, record.validation);
       if (!alias.ok()) return alias.error();
       record.validation.reason = std::move(*alias);
@@ -210,6 +213,15 @@ class CatacombBuilder {
     validation_seconds_ += seconds;
     result_.validation_ms.push_back(1e3 * seconds);
     return record;
+  }
+
+  // Whether the chain from map `from` to map `to` crosses a failed registration: a tie that
+  // is the odometry's guess.
+  bool ChainCrossesFailure(int from, int to) const {
+    for (int i = std::min(from, to); i < std::max(from, to); ++i) {
+      if (tracked_[static_cast<std::size_t>(i)].ends_in_failure) return true;
+    }
+    return false;
   }
 
   // The current map tried on the reference's neighbours, nearest first, one read at a time:

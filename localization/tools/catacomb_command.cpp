@@ -55,6 +55,7 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--range-merge-weights") a.drive.options.model.weighting = maps::range3d::DepthWeighting::kInverse;
     else if (arg == "--ambiguity-shift") a.options.validation.ambiguity_shift_m = number();
     else if (arg == "--alias-neighbours") a.options.alias_neighbours = integer(0, 100);
+    else if (arg == "--alias-everywhere") a.options.alias_everywhere = true;
     else if (arg == "--no-loops") a.options.distance_candidates = a.options.shape_candidates = false;
     else if (arg == "--no-distance-candidates") a.options.distance_candidates = false;
     else if (arg == "--no-shape-candidates") a.options.shape_candidates = false;

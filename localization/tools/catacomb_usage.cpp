@@ -48,8 +48,11 @@ Also:
                           anywhere along itself; default 0: no such test; docs/benchmarks.md)
   --alias-neighbours N    refuse a closure when the current map fits one of the N past maps on
                           each side of its reference (along the trajectory) as well, somewhere
-                          else: a place whose look repeats (default 0: no such test;
-                          docs/benchmarks.md)
+                          else: a place whose look repeats. Only where the chain between the
+                          two maps crosses a failed registration (or the injected break),
+                          whose guess may be off by a map or more (default 1; 0: no such
+                          test; docs/benchmarks.md)
+  --alias-everywhere      the alias test on every closure NICP accepts
   --no-loops              no loop closing: the chain of local maps alone
   --no-distance-candidates, --no-shape-candidates
                           leave out one kind of candidate
