@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hal/cloud/ply_writer.hpp"
+#include "hal/common/angles.hpp"
 #include "hal/trajectory/pose_interpolation.hpp"
 #include "localization/evaluation/loop_candidate_eval.hpp"
 #include "localization/evaluation/trajectory_error.hpp"
@@ -148,7 +149,7 @@ ClosureTruth JudgeClosures(const Args& a, const CatacombResult& r, const std::ve
     const Eigen::Isometry3d truth_T = truth_maps[static_cast<std::size_t>(c.candidate.reference)].inverse() *
                                       truth_maps[static_cast<std::size_t>(c.candidate.current)];
     const Eigen::Isometry3d error = truth_T.inverse() * c.validation.result.target_T_source;
-    t.closure_errors.emplace_back(error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI);
+    t.closure_errors.emplace_back(error.translation().norm(), Eigen::AngleAxisd(error.linear()).angle() * kRadToDeg);
   }
   t.revisits = static_cast<int>(revisits.revisit_pairs.size());
   t.informative_revisits = static_cast<int>(revisits.informative_pairs.size());
