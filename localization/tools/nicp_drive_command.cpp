@@ -128,8 +128,9 @@ bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a) {
   } else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
   else if (arg == "--pyramid") a.options.lidar_pyramid = ParsePyramid(arg, value(), a.options.frames.lidar_columns);
   else if (arg == "--pyramid-iterations") a.options.pyramid_iterations = integer(1000);
-  else if (arg == "--min-inlier-share") a.options.min_inlier_share = static_cast<float>(maps::cli::ParseNumber(kTool, arg, value()));
-  else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
+  else if (arg == "--min-inlier-share") {
+    a.options.min_inlier_share = static_cast<float>(maps::cli::ParseNumber(kTool, arg, value()));
+  } else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
   else if (arg == "--no-deskew") a.options.deskew = false;
   else if (arg == "--inverse-depth-weights") a.options.nicp.inverse_depth_weights = true;
   else if (arg == "--planar") a.options.planar = true;
@@ -153,7 +154,9 @@ void CheckNicpDriveArgs(const NicpDriveArgs& a, const std::string& mode, const c
     Fail(1, "build --mode " + mode + " DRIVE: --can, --dbc and --odometry go together");
   }
   const float share = a.options.min_inlier_share;
-  if (!(share >= 0.0F && share <= 1.0F)) Fail(1, "build --mode " + mode + " DRIVE: --min-inlier-share is a share in [0, 1]");
+  if (!(share >= 0.0F && share <= 1.0F)) {
+    Fail(1, "build --mode " + mode + " DRIVE: --min-inlier-share is a share in [0, 1]");
+  }
 }
 
 namespace {
