@@ -85,6 +85,14 @@ std::vector<LoopCandidate> DistanceCandidates(std::span<const LocalMapTrajectory
   return candidates;
 }
 
+bool ChainCrossesFailure(const std::vector<bool>& tie_failed, int a, int b) {
+  const auto last = static_cast<int>(tie_failed.size());
+  for (int tie = std::max(std::min(a, b), 0); tie < std::min(std::max(a, b), last); ++tie) {
+    if (tie_failed[static_cast<std::size_t>(tie)]) return true;
+  }
+  return false;
+}
+
 std::vector<LoopCandidate> TrajectoryShapeCandidates(std::span<const LocalMapTrajectory> maps, int current,
                                                      const LoopCandidateOptions& options) {
   std::vector<LoopCandidate> candidates;

@@ -68,4 +68,9 @@ std::vector<LoopCandidate> DistanceCandidates(std::span<const LocalMapTrajectory
 std::vector<LoopCandidate> TrajectoryShapeCandidates(std::span<const LocalMapTrajectory> maps, int current,
                                                      const LoopCandidateOptions& options);
 
+// Whether the chain between maps `a` and `b` (either order) holds a tie whose registration
+// failed: tie i joins maps i and i + 1, tie_failed[i] marks it. Across such a tie a
+// candidate's guess is the odometry's, which can be metres off, not the tracking's.
+bool ChainCrossesFailure(const std::vector<bool>& tie_failed, int a, int b);
+
 }  // namespace flat2d::localization::loops

@@ -1,6 +1,5 @@
 #include "localization/tools/catacomb_build.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <map>
 #include <random>
@@ -154,6 +153,7 @@ class CatacombBuilder {
   // Step 2.
   void BuildChain() {
     for (const TrackedMap& map : tracked_) result_.graph.AddNode(map.world_T_map);
+    for (std::size_t i = 0; i + 1 < tracked_.size(); ++i) tie_failed_.push_back(tracked_[i].ends_in_failure);
     for (std::size_t i = 0; i + 1 < tracked_.size(); ++i) {
       graph::Se3BetweenFactor factor;
       factor.from = i;
@@ -203,7 +203,7 @@ class CatacombBuilder {
     record.injected = injected;
     record.validation = loops::ValidateClosure(**reference, **current, candidate.reference_T_current, options_.validation);
     if (record.validation.accepted && options_.alias_neighbours > 0 &&
-        (options_.alias_everywhere || ChainCrossesFailure(candidate.reference, candidate.current))) {
+        (options_.alias_everywhere || loops::ChainCrossesFailure(tie_failed_, candidate.reference, candidate.current))) {
       auto alias = FindAlias(candidate, record.validation);
       if (!alias.ok()) return alias.error();
       record.validation.reason = std::move(*alias);
@@ -213,15 +213,6 @@ class CatacombBuilder {
     validation_seconds_ += seconds;
     result_.validation_ms.push_back(1e3 * seconds);
     return record;
-  }
-
-  // Whether the chain from map `from` to map `to` crosses a failed registration: a tie that
-  // is the odometry's guess.
-  bool ChainCrossesFailure(int from, int to) const {
-    for (int i = std::min(from, to); i < std::max(from, to); ++i) {
-      if (tracked_[static_cast<std::size_t>(i)].ends_in_failure) return true;
-    }
-    return false;
   }
 
   // The current map tried on the reference's neighbours, nearest first, one read at a time:
@@ -364,6 +355,7 @@ class CatacombBuilder {
   CatacombResult result_;
   std::vector<TrackedMap> tracked_;
   std::vector<std::size_t> accepted_;  // records that become closures
+  std::vector<bool> tie_failed_;       // per tie of the chain (BuildChain): across a failed registration
   double injection_due_ = 0.0;
   double validation_seconds_ = 0.0;
 };

@@ -131,5 +131,19 @@ TEST(LoopCandidates, Kitti00TruthTrajectory) {
   EXPECT_EQ(report.distance.correct, 0);  // 42 m of drift: the distance search's guesses are all beyond 1 m
 }
 
+// Tie i joins maps i and i + 1: with tie 2 failed (maps 2 -> 3), only the chains that span
+// it cross a failure, whichever way round they are asked.
+TEST(ChainCrossesFailure, OnlyChainsSpanningAFailedTieCrossOne) {
+  const std::vector<bool> tie_failed{false, false, true, false};  // maps 0..4
+  EXPECT_FALSE(ChainCrossesFailure(tie_failed, 0, 2));
+  EXPECT_TRUE(ChainCrossesFailure(tie_failed, 0, 3));
+  EXPECT_TRUE(ChainCrossesFailure(tie_failed, 2, 3));
+  EXPECT_TRUE(ChainCrossesFailure(tie_failed, 4, 1));
+  EXPECT_FALSE(ChainCrossesFailure(tie_failed, 3, 4));
+  EXPECT_FALSE(ChainCrossesFailure(tie_failed, 2, 2));
+  EXPECT_FALSE(ChainCrossesFailure({}, 0, 5));  // a chain of one map
+  EXPECT_TRUE(ChainCrossesFailure(tie_failed, -1, 9));  // map indices beyond the chain are clamped
+}
+
 }  // namespace
 }  // namespace flat2d::localization::loops
