@@ -153,14 +153,14 @@ class CatacombBuilder {
   // Step 2.
   void BuildChain() {
     for (const TrackedMap& map : tracked_) result_.graph.AddNode(map.world_T_map);
-    for (std::size_t i = 0; i + 1 < tracked_.size(); ++i) tie_failed_.push_back(tracked_[i].ends_in_failure);
+    const FactorSigma& tracking = options_.drive.planar ? options_.planar_tracking : options_.tracking;
     for (std::size_t i = 0; i + 1 < tracked_.size(); ++i) {
+      tie_failed_.push_back(tracked_[i].ends_in_failure);
       graph::Se3BetweenFactor factor;
       factor.from = i;
       factor.to = i + 1;
       factor.measurement = tracked_[i].world_T_map.inverse() * tracked_[i + 1].world_T_map;
-      const FactorSigma& tracking = options_.drive.planar ? options_.planar_tracking : options_.tracking;
-      factor.information = InformationOf(tracked_[i].ends_in_failure ? options_.odometry : tracking);
+      factor.information = InformationOf(tie_failed_[i] ? options_.odometry : tracking);
       result_.graph.betweens.push_back(factor);
     }
   }
@@ -327,8 +327,8 @@ class CatacombBuilder {
   // judged against the kept closures (loops::JudgeWeakTies).
   void JudgeFailureTies() {
     std::vector<std::size_t> ties, closures;
-    for (std::size_t i = 0; i + 1 < tracked_.size(); ++i) {
-      if (tracked_[i].ends_in_failure) ties.push_back(i);  // the chain's factor i joins maps i and i + 1
+    for (std::size_t i = 0; i < tie_failed_.size(); ++i) {
+      if (tie_failed_[i]) ties.push_back(i);  // the chain's factor i joins maps i and i + 1
     }
     for (const std::size_t record : accepted_) closures.push_back(*result_.closures[record].factor);
     result_.failure_tie_scales =
