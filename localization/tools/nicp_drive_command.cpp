@@ -94,16 +94,12 @@ bool IsDrive(std::string_view path) { return IsCapture(path) || hal::cloud::IsKi
 
 // "8,4,2": column divisors, coarse to fine, each dividing the image's columns.
 std::vector<int> ParsePyramid(std::string_view flag, const std::string& text, int columns) {
-  std::vector<int> scales;
-  for (const std::int64_t scale : maps::cli::ParseIntegerList(kTool, flag, text, 1, columns)) {
+  const std::vector<int> scales = maps::cli::ParseCoarseToFine(kTool, flag, text, columns);
+  for (const int scale : scales) {
     if (columns % scale != 0) {
       Fail(1, std::string(flag) + ": " + std::to_string(scale) + " does not divide the image's " +
                   std::to_string(columns) + " columns");
     }
-    if (!scales.empty() && scale >= scales.back()) {
-      Fail(1, std::string(flag) + ": the levels go coarse to fine, each divisor smaller than the one before");
-    }
-    scales.push_back(static_cast<int>(scale));
   }
   return scales;
 }

@@ -73,6 +73,17 @@ std::vector<std::int64_t> ParseIntegerList(std::string_view tool, std::string_vi
   return values;
 }
 
+std::vector<int> ParseCoarseToFine(std::string_view tool, std::string_view flag, const std::string& text, int max) {
+  std::vector<int> scales;
+  for (const std::int64_t scale : ParseIntegerList(tool, flag, text, 1, max)) {
+    if (!scales.empty() && scale >= scales.back()) {
+      Fail(tool, 1, std::string(flag) + ": the levels go coarse to fine, each scale smaller than the one before");
+    }
+    scales.push_back(static_cast<int>(scale));
+  }
+  return scales;
+}
+
 std::uint32_t ParseAddress(std::string_view tool, std::string_view flag, const std::string& text) {
   const auto address = hal::net::ParseIpv4(text);
   if (!address) Fail(tool, 1, std::string(flag) + ": not an IPv4 address: " + text);

@@ -25,6 +25,9 @@ std::vector<double> ParseNumberList(std::string_view tool, std::string_view flag
 // Comma-separated integers within [min, max] ("8,4,2"), or Fail(1) naming the flag.
 std::vector<std::int64_t> ParseIntegerList(std::string_view tool, std::string_view flag, const std::string& text,
                                            std::int64_t min, std::int64_t max);
+// A pyramid's scales ("4,2,1"): integers within [1, max], coarse to fine (each smaller
+// than the one before), or Fail(1) naming the flag.
+std::vector<int> ParseCoarseToFine(std::string_view tool, std::string_view flag, const std::string& text, int max);
 std::uint32_t ParseAddress(std::string_view tool, std::string_view flag, const std::string& text);
 
 }  // namespace flat2d::maps::cli
