@@ -1,5 +1,6 @@
 #include "localization/registration/snicp.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "localization/registration/correspondence_finder.hpp"
@@ -11,8 +12,9 @@ SnicpFrame MakeSnicpFrame(const hal::cloud::DepthImage& depth, const maps::range
                           const SnicpOptions& options) {
   SnicpFrame frame;
   maps::range3d::CrossProductNormals normals(options.normals);
+  const int working_scale = std::max(frames.image_scale, 1);  // the pyramid's "full" level
   for (const int scale : options.scales) {
-    maps::range3d::RangeFrame level = maps::range3d::UnprojectDepth(depth, frames, scale);
+    maps::range3d::RangeFrame level = maps::range3d::UnprojectDepth(depth, frames, scale * working_scale);
     normals.Compute(level.image, level.cloud);
     level.statistics_radius_m = static_cast<float>(kNormalWeightRadiusM);  // the thesis' weight, unscaled
     frame.levels.push_back(std::move(level));

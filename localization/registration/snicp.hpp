@@ -21,12 +21,15 @@
 namespace flat2d::localization::registration {
 
 struct SnicpOptions {
-  std::vector<int> scales{4, 2, 1};  // coarse to fine: 160x120, 320x240, 640x480
+  // Coarse to fine, relative to the frames' image_scale (the working resolution): 160x120,
+  // 320x240, 640x480 for a 640x480 camera at image_scale 1; 40x30, 80x60, 160x120 at 4.
+  std::vector<int> scales{4, 2, 1};
   int iterations_per_level = 3;      // 5.3
   maps::range3d::CrossProductNormalOptions normals;
 };
 
-// A depth frame at every level of the pyramid, coarse to fine.
+// A depth frame at every level of the pyramid, coarse to fine; level s is every
+// (s x frames.image_scale)-th pixel and row of `depth`.
 struct SnicpFrame {
   std::vector<maps::range3d::RangeFrame> levels;
 };

@@ -83,7 +83,7 @@ Result<NicpBuildSummary> BuildFromDepthList(const std::filesystem::path& list, c
   NicpBuildSummary summary;
   std::vector<hal::trajectory::StampedPose> trajectory;
   std::vector<Eigen::Vector3f> model_points, model_normals;
-  const registration::SnicpOptions snicp;
+  const registration::SnicpOptions& snicp = options.snicp_options;
   std::optional<registration::ModelTracker> tracker;  // sized by the first frame's image
   registration::SnicpFrame previous;
   Eigen::Isometry3d world_T_camera = Eigen::Isometry3d::Identity();

@@ -26,6 +26,7 @@ struct NicpBuildOptions {
   registration::NicpOptions nicp;
   maps::range3d::RangeFrameOptions frames;
   bool snicp = false;             // SNICP (5.2) instead of `method`
+  registration::SnicpOptions snicp_options;  // its pyramid, relative to frames.image_scale
   bool constant_velocity = true;  // false: every pair starts from identity
   bool frame_to_model = true;     // false: frame to frame
   maps::range3d::SurfelModelOptions model;

@@ -107,6 +107,40 @@ TEST(Snicp, RecoversSeededMotionsThroughThePyramid) {
   }
 }
 
+// The pyramid is built on the frames' working resolution: at image_scale 4 (160x120, the
+// real-time configuration of docs/benchmarks.md) the levels 2, 1 are 80x60 and 160x120.
+TEST(Snicp, ThePyramidStandsOnTheWorkingResolution) {
+  const PinholeIntrinsics intrinsics;
+  const Eigen::Isometry3f world_T_target = CameraPose();
+  maps::range3d::RangeFrameOptions frames;
+  frames.image_scale = 4;
+  SnicpOptions options;
+  options.scales = {2, 1};
+  std::mt19937 noise(5);
+  auto pyramid = [&](const Eigen::Isometry3f& pose) {
+    const auto depth = testing::RenderDepth(testing::OfficeRoom(), intrinsics, pose, 0.002F, noise);
+    return MakeSnicpFrame(depth, frames, options);
+  };
+  const SnicpFrame target = pyramid(world_T_target);
+  ASSERT_EQ(target.levels.size(), 2U);
+  EXPECT_EQ(target.levels[0].projection.cols(), 80);
+  EXPECT_EQ(target.levels[0].projection.rows(), 60);
+  EXPECT_EQ(target.levels[1].projection.cols(), 160);
+  EXPECT_FLOAT_EQ(target.levels[1].projection.intrinsics().fx, 525.0F / 4.0F);
+  std::mt19937 rng(43);
+  for (int trial = 0; trial < 3; ++trial) {
+    const Eigen::Isometry3f target_T_source = RandomMotion(rng, 3.0F * static_cast<float>(M_PI) / 180.0F, 0.03F);
+    const SnicpFrame source = pyramid(world_T_target * target_T_source);
+    const FrameRegistration r = RegisterSnicp(target, source, Eigen::Isometry3d::Identity(), NicpOptions{}, options);
+    ASSERT_TRUE(r.result.ok()) << FailureName(r.result.failure);
+    EXPECT_LE(r.result.iterations, 6);  // 3 a level
+    const testing::PoseError e = testing::PoseErrorOf(r.result.target_T_source, target_T_source.cast<double>());
+    std::printf("snicp at 160x120, trial %d: %.2f mm %.3f deg\n", trial, 1e3 * e.translation_m, e.rotation_deg);
+    EXPECT_LT(e.translation_m, 0.001) << "trial " << trial;
+    EXPECT_LT(e.rotation_deg, 0.02) << "trial " << trial;
+  }
+}
+
 TEST(Nicp, IdenticalFramesStayAtIdentityAndReportInformation) {
   const RangeProjection projection = RangeProjection::Pinhole({});
   const SurfelCloud frame = DepthFrame(CameraPose(), projection);
