@@ -17,12 +17,17 @@ frame; writes DIR/trajectory.tum (world_T_camera, the first frame is the world, 
 stamps) and DIR/model.ply (the merged model's points and normals, or every 10th frame's).
   --method M            nicp (default), point-to-plane or snicp (cross-product normals,
                         3 iterations at 1/4, 1/2 and full resolution)
+  --snicp-scales S,S,...  snicp: the pyramid's levels, coarse to fine, as divisors of the
+                        --image-scale resolution (default 4,2,1, thesis 5.3)
   --tracking T          model (default: frame to model, each frame merged; a frame that
                         fails is not) or frame (frame to frame)
   --identity-guess      start every pair from identity (default: the previous motion)
   --max-frames N        only the first N frames
-  --image-scale N       every N-th pixel and row (default 1)
+  --image-scale N       every N-th pixel and row (default 1); SNICP's pyramid is built on
+                        this resolution
   --iterations N        (default 10)
+  --inverse-depth-weights  weigh each pair by 1 / (d_i d_j), the points' depths (Eq. 6.7)
+  --flat-curvature S    sigma below which a surface is a disc (Eq. 5.2; default 0.02)
   --intrinsics FX,FY,CX,CY  (default 525,525,319.5,239.5)
   --json                a summary: frames, failures, frame_ms_p50/p95 (statistics of the
                         new frame + registration), registration_ms_p50, load_ms_p50
@@ -63,6 +68,13 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--max-frames") a.options.max_frames = integer(1 << 30);
     else if (arg == "--image-scale") a.options.frames.image_scale = integer(8);
     else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
+    else if (arg == "--snicp-scales") a.options.snicp_options.scales = maps::cli::ParseCoarseToFine(kTool, arg, value(), 64);
+    else if (arg == "--inverse-depth-weights") a.options.nicp.inverse_depth_weights = true;
+    else if (arg == "--flat-curvature") {
+      const double sigma = maps::cli::ParseNumber(kTool, arg, value());
+      if (!(sigma >= 0.0 && sigma <= 1.0)) Fail(1, "build --mode nicp: --flat-curvature is a curvature sigma in [0, 1]");
+      a.options.frames.depth_statistics.flat_curvature = static_cast<float>(sigma);
+    }
     else if (arg == "--intrinsics") {
       const auto v = maps::cli::ParseNumberList(kTool, arg, value(), 4);
       a.options.frames.intrinsics = {640, 480, static_cast<float>(v[0]), static_cast<float>(v[1]),

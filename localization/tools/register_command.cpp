@@ -30,10 +30,17 @@ elevation bins) registers by projection into its image, an unorganized one by KD
                         (default 1/3, Eq. 6.10; scale it with the scene)
   --iterations N        (default 10)
   --radius M            the surface statistics radius R (default 0.1 depth and PLY, 0.3 LiDAR)
+  --flat-curvature S    sigma below which a surface is a disc (Eq. 5.2; default 0.02)
   --max-distance M      eps_d of Eq. 5.6 (default 0.5)
-  --image-scale N       depth images: every N-th pixel and row (default 1: all of them)
+  --image-scale N       depth images: every N-th pixel and row (default 1: all of them);
+                        4 is 160x120, the working resolution of the NICP authors' Kinect
+                        configuration (docs/benchmarks.md, "Working resolution")
+  --snicp-scales S,S,...  snicp: the pyramid's levels, coarse to fine, as divisors of the
+                        --image-scale resolution (default 4,2,1, thesis 5.3)
   --columns N           LiDAR range image columns (default 2160)
   --chi2-bound K        winsorization bound of Eq. 4.11 (default 10)
+  --inverse-depth-weights  weigh each pair by 1 / (d_i d_j), the points' depths in their
+                        own frames (Eq. 6.7: far points are noisier); projective mode only
   --damping L           lambda of Eq. 5.15 relative to H's mean diagonal (default 1e-4)
   --normal-weight W     scales Omega^n at R = 0.1 m, by (R/0.1)^2 at other R
                         (default 1, Eq. 5.14)
@@ -56,6 +63,7 @@ struct RegisterArgs {
   registration::NicpOptions nicp;
   maps::range3d::RangeFrameOptions frames;
   bool snicp = false;
+  registration::SnicpOptions snicp_options;
   bool json = false;
 };
 
@@ -65,6 +73,12 @@ void SetRadius(RegisterArgs& a, float radius) {
   a.frames.depth_statistics.radius_m = radius;
   a.frames.lidar_statistics.radius_m = radius;
   a.frames.unorganized_statistics.radius_m = radius;
+}
+
+void SetFlatCurvature(RegisterArgs& a, float sigma) {
+  a.frames.depth_statistics.flat_curvature = sigma;
+  a.frames.lidar_statistics.flat_curvature = sigma;
+  a.frames.unorganized_statistics.flat_curvature = sigma;
 }
 
 RegisterArgs ParseArgs(int argc, char** argv) {
@@ -89,10 +103,17 @@ RegisterArgs ParseArgs(int argc, char** argv) {
     else if (arg == "--alpha") a.nicp.kdtree_alpha = static_cast<float>(number());
     else if (arg == "--iterations") a.nicp.iterations = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1000));
     else if (arg == "--radius") SetRadius(a, static_cast<float>(number()));
+    else if (arg == "--flat-curvature") {
+      const double sigma = number();
+      if (!(sigma >= 0.0 && sigma <= 1.0)) Fail(1, "register: --flat-curvature is a curvature sigma in [0, 1]");
+      SetFlatCurvature(a, static_cast<float>(sigma));
+    }
     else if (arg == "--max-distance") a.nicp.max_distance_m = static_cast<float>(number());
     else if (arg == "--chi2-bound") a.nicp.chi2_bound = number();
     else if (arg == "--image-scale") a.frames.image_scale = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 8));
     else if (arg == "--columns") a.frames.lidar_columns = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 16, 32768));
+    else if (arg == "--snicp-scales") a.snicp_options.scales = maps::cli::ParseCoarseToFine(kTool, arg, value(), 64);
+    else if (arg == "--inverse-depth-weights") a.nicp.inverse_depth_weights = true;
     else if (arg == "--damping") a.nicp.damping = number();
     else if (arg == "--normal-weight") a.nicp.normal_weight = number();
     else if (arg == "--intrinsics") {
@@ -180,11 +201,11 @@ FrameRegistration RegisterSnicpFiles(const RegisterArgs& a, const Eigen::Isometr
     const auto start = std::chrono::steady_clock::now();
     auto depth = hal::cloud::ReadTumDepthPng(*paths[k], a.frames.depth_scale);
     if (!depth.ok()) Fail(2, depth.error().message + " (snicp registers depth images)");
-    pyramids[k] = registration::MakeSnicpFrame(*depth, a.frames, registration::SnicpOptions{});
+    pyramids[k] = registration::MakeSnicpFrame(*depth, a.frames, a.snicp_options);
     loaded[k]->frame = pyramids[k].levels.back();
     loaded[k]->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
-  return registration::RegisterSnicp(pyramids[1], pyramids[0], guess, a.nicp, registration::SnicpOptions{});
+  return registration::RegisterSnicp(pyramids[1], pyramids[0], guess, a.nicp, a.snicp_options);
 }
 
 int RegisterCommand(int argc, char** argv) {
