@@ -1,6 +1,6 @@
 // NICP's time on one core (issue 11; thesis Table 5.1: 12 ms a 640x480 pair, multi-core,
-// i7-3630QM): a TUM fr1/rpy depth pair with the new frame's statistics, at full and half
-// resolution, the statistics alone, and an HDL-32E revolution pair; and the local-map
+// i7-3630QM): a TUM fr1/rpy depth pair with the new frame's statistics, at full, half and
+// quarter resolution (the image scale, the argument), the statistics alone, and an HDL-32E revolution pair; and the local-map
 // tracker's step on an HDL-32E revolution with and without its pyramid (issue 12). Files are read once
 // outside the timed loop: a camera or a driver hands the frame over decoded.
 #include <benchmark/benchmark.h>
@@ -61,12 +61,13 @@ void BM_NicpDepthPair(benchmark::State& state, RegistrationMethod method) {
   }
   state.counters["inliers"] = inliers;
 }
-BENCHMARK_CAPTURE(BM_NicpDepthPair, nicp, RegistrationMethod::kNicp)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_NicpDepthPair, nicp, RegistrationMethod::kNicp)
+    ->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_NicpDepthPair, point_to_plane, RegistrationMethod::kPointToPlane)
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+    ->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 
 // SNICP (5.2): the new frame's pyramid with cross-product normals, then 3 iterations at
-// each of 1/4, 1/2 and full resolution.
+// each of 1/4, 1/2 and 1 of the working resolution, every Arg-th pixel of the camera's.
 void BM_SnicpDepthPair(benchmark::State& state) {
   const auto previous = LoadDepth("1305031229.825630.png");
   const auto current = LoadDepth("1305031229.863062.png");
@@ -74,7 +75,7 @@ void BM_SnicpDepthPair(benchmark::State& state) {
     state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
     return;
   }
-  const maps::range3d::RangeFrameOptions frames;
+  const auto frames = DepthOptions(static_cast<int>(state.range(0)));
   const localization::registration::SnicpOptions options;
   const auto target = localization::registration::MakeSnicpFrame(*previous, frames, options);
   int inliers = 0;
@@ -86,7 +87,7 @@ void BM_SnicpDepthPair(benchmark::State& state) {
   }
   state.counters["inliers"] = inliers;
 }
-BENCHMARK(BM_SnicpDepthPair)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SnicpDepthPair)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
 
 void BM_SnicpPyramid(benchmark::State& state) {
   const auto depth = LoadDepth("1305031229.863062.png");
@@ -109,7 +110,7 @@ void BM_DepthStatistics(benchmark::State& state) {
   const auto options = DepthOptions(static_cast<int>(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(maps::range3d::FrameFromDepth(*depth, options).cloud.size());
 }
-BENCHMARK(BM_DepthStatistics)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DepthStatistics)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 
 // One NICP iteration's two halves on the 640x480 pair at the identity: the projective
 // correspondence search (source index image + tests of Eq. 5.6-5.8) and the linear system.
