@@ -157,8 +157,16 @@ RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const E
     nicp.normal_weight = options_.nicp.normal_weight * radius_ratio * radius_ratio;
     ProjectiveCorrespondenceFinder finder(view_, level_views_[level], &level_images_[level]);
     registered = &SourceAt(frame, level);
-    result = Nicp(nicp).Register(view_, finder, *registered, result.target_T_source);
+    const Eigen::Isometry3d level_guess = result.target_T_source;
+    result = Nicp(nicp).Register(view_, finder, *registered, level_guess);
     iterations += result.iterations;
+    // A coarse level too sparse to pair (a 40 x 30 view of the model) only widens the
+    // basin: the next level starts where this one did. The finest level decides.
+    const bool coarse = level + 1 < levels;
+    if (coarse && result.failure == RegistrationFailure::kTooFewCorrespondences) {
+      result.target_T_source = level_guess;
+      continue;
+    }
     if (!result.ok()) break;
   }
   finest_points = registered != nullptr ? PointsWithNormals(*registered) : 0.0F;

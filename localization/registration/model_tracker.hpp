@@ -12,7 +12,8 @@
 //   2. The frame is registered to the rendered view in the inverse form of Eq. 5.20 from
 //      the predicted motion: the reference projection is fixed and the frame moves, level
 //      by level (NICP: one level, 10 iterations; SNICP: 1/4, 1/2, full, 3 iterations
-//      each, 5.3; LiDAR: options.lidar_column_scales).
+//      each, 5.3; LiDAR: options.lidar_column_scales). A coarse level too sparse to pair
+//      enough points is passed over; the finest level decides.
 //   3. On success the frame's full-resolution cloud is merged at the estimated pose
 //      (maps/range3d/surfel_model.hpp); a failed registration keeps the prediction and
 //      leaves the model untouched, so one bad frame cannot corrupt it. Registration fails

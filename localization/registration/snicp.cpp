@@ -29,12 +29,18 @@ FrameRegistration RegisterSnicp(const SnicpFrame& target, const SnicpFrame& sour
   FrameRegistration registration;
   registration.result.target_T_source = guess;
   int iterations = 0;
-  for (std::size_t level = 0; level < target.levels.size() && level < source.levels.size(); ++level) {
+  const std::size_t levels = std::min(target.levels.size(), source.levels.size());
+  for (std::size_t level = 0; level < levels; ++level) {
     const maps::range3d::RangeFrame& t = target.levels[level];
     ProjectiveCorrespondenceFinder finder(t.cloud, t.projection, &t.image);
-    registration.result = Nicp(nicp).Register(t.cloud, finder, source.levels[level].cloud,
-                                              registration.result.target_T_source);
+    const Eigen::Isometry3d level_guess = registration.result.target_T_source;
+    registration.result = Nicp(nicp).Register(t.cloud, finder, source.levels[level].cloud, level_guess);
     iterations += registration.result.iterations;
+    // As the model tracker: a coarse level too sparse to pair is passed over.
+    if (level + 1 < levels && registration.result.failure == RegistrationFailure::kTooFewCorrespondences) {
+      registration.result.target_T_source = level_guess;
+      continue;
+    }
     if (!registration.result.ok()) break;
   }
   registration.result.iterations = iterations;

@@ -38,7 +38,8 @@ SnicpFrame MakeSnicpFrame(const hal::cloud::DepthImage& depth, const maps::range
                           const SnicpOptions& options);
 
 // Registers source to target level by level; options.iterations is replaced by
-// iterations_per_level. result.iterations counts all levels'.
+// iterations_per_level. result.iterations counts all levels'. A coarse level with too few
+// pairs is passed over (the next starts from the same pose); the finest decides.
 FrameRegistration RegisterSnicp(const SnicpFrame& target, const SnicpFrame& source, const Eigen::Isometry3d& guess,
                                 NicpOptions nicp, const SnicpOptions& options);
 

@@ -62,6 +62,32 @@ TEST(ModelTracker, TracksADriftFreeCameraThroughTheMergedModel) {
   EXPECT_LT(tracker.model().size(), 2 * first_frame_points);
 }
 
+// A coarse level that cannot pair enough points (its 80 x 60 view holds fewer than the
+// 6000 inliers asked for) is passed over: the full level registers from the same guess.
+// The finest level is not: with it too sparse the frame fails.
+TEST(ModelTracker, ACoarseLevelTooSparseToPairIsPassedOver) {
+  ModelTrackerOptions options;
+  options.nicp.min_inliers = 6000;
+  ModelTracker tracker(PinholeIntrinsics{}, options);
+  std::mt19937 noise(7);
+  (void)tracker.Track(FrameAt(0, noise), Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity());
+  const TrackedFrame tracked = tracker.Track(FrameAt(1, noise), Eigen::Isometry3d::Identity(),
+                                             Eigen::Isometry3d::Identity());
+  ASSERT_TRUE(tracked.merged) << FailureName(tracked.result.failure);
+  const testing::PoseError e =
+      testing::PoseErrorOf(tracked.model_T_camera, (CameraAt(0).inverse() * CameraAt(1)).cast<double>());
+  EXPECT_LT(e.translation_m, 0.001);
+  EXPECT_LT(e.rotation_deg, 0.02);
+
+  options.nicp.min_inliers = 400000;  // more than the 640 x 480 frame has
+  ModelTracker starved(PinholeIntrinsics{}, options);
+  (void)starved.Track(FrameAt(0, noise), Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity());
+  const TrackedFrame failed = starved.Track(FrameAt(1, noise), Eigen::Isometry3d::Identity(),
+                                            Eigen::Isometry3d::Identity());
+  EXPECT_FALSE(failed.merged);
+  EXPECT_EQ(failed.result.failure, RegistrationFailure::kTooFewCorrespondences);
+}
+
 TEST(ModelTracker, AFailedRegistrationLeavesTheModelUntouched) {
   ModelTracker tracker(PinholeIntrinsics{}, ModelTrackerOptions{});
   std::mt19937 noise(7);
