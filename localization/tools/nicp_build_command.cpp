@@ -68,11 +68,15 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--max-frames") a.options.max_frames = integer(1 << 30);
     else if (arg == "--image-scale") a.options.frames.image_scale = integer(8);
     else if (arg == "--iterations") a.options.nicp.iterations = integer(1000);
-    else if (arg == "--snicp-scales") a.options.snicp_options.scales = maps::cli::ParseCoarseToFine(kTool, arg, value(), 64);
+    else if (arg == "--snicp-scales") {
+      a.options.snicp_options.scales = maps::cli::ParseCoarseToFine(kTool, arg, value(), 64);
+    }
     else if (arg == "--inverse-depth-weights") a.options.nicp.inverse_depth_weights = true;
     else if (arg == "--flat-curvature") {
       const double sigma = maps::cli::ParseNumber(kTool, arg, value());
-      if (!(sigma >= 0.0 && sigma <= 1.0)) Fail(1, "build --mode nicp: --flat-curvature is a curvature sigma in [0, 1]");
+      if (!(sigma >= 0.0 && sigma <= 1.0)) {
+        Fail(1, "build --mode nicp: --flat-curvature is a curvature sigma in [0, 1]");
+      }
       a.options.frames.depth_statistics.flat_curvature = static_cast<float>(sigma);
     }
     else if (arg == "--intrinsics") {
