@@ -160,13 +160,7 @@ RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const E
     const Eigen::Isometry3d level_guess = result.target_T_source;
     result = Nicp(nicp).Register(view_, finder, *registered, level_guess);
     iterations += result.iterations;
-    // A coarse level too sparse to pair (a 40 x 30 view of the model) only widens the
-    // basin: the next level starts where this one did. The finest level decides.
-    const bool coarse = level + 1 < levels;
-    if (coarse && result.failure == RegistrationFailure::kTooFewCorrespondences) {
-      result.target_T_source = level_guess;
-      continue;
-    }
+    if (PassOverSparseLevel(level + 1 == levels, level_guess, result)) continue;  // a 40 x 30 view, say
     if (!result.ok()) break;
   }
   finest_points = registered != nullptr ? PointsWithNormals(*registered) : 0.0F;

@@ -22,6 +22,12 @@ SnicpFrame MakeSnicpFrame(const hal::cloud::DepthImage& depth, const maps::range
   return frame;
 }
 
+bool PassOverSparseLevel(bool finest, const Eigen::Isometry3d& level_guess, RegistrationResult& result) {
+  if (finest || result.failure != RegistrationFailure::kTooFewCorrespondences) return false;
+  result.target_T_source = level_guess;
+  return true;
+}
+
 FrameRegistration RegisterSnicp(const SnicpFrame& target, const SnicpFrame& source, const Eigen::Isometry3d& guess,
                                 NicpOptions nicp, const SnicpOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -36,11 +42,7 @@ FrameRegistration RegisterSnicp(const SnicpFrame& target, const SnicpFrame& sour
     const Eigen::Isometry3d level_guess = registration.result.target_T_source;
     registration.result = Nicp(nicp).Register(t.cloud, finder, source.levels[level].cloud, level_guess);
     iterations += registration.result.iterations;
-    // As the model tracker: a coarse level too sparse to pair is passed over.
-    if (level + 1 < levels && registration.result.failure == RegistrationFailure::kTooFewCorrespondences) {
-      registration.result.target_T_source = level_guess;
-      continue;
-    }
+    if (PassOverSparseLevel(level + 1 == levels, level_guess, registration.result)) continue;
     if (!registration.result.ok()) break;
   }
   registration.result.iterations = iterations;

@@ -40,6 +40,11 @@ SnicpFrame MakeSnicpFrame(const hal::cloud::DepthImage& depth, const maps::range
 // Registers source to target level by level; options.iterations is replaced by
 // iterations_per_level. result.iterations counts all levels'. A coarse level with too few
 // pairs is passed over (the next starts from the same pose); the finest decides.
+// Level-by-level registration's rule for a level that paired too few points: a coarse
+// level only widens the basin, so the next level starts from `level_guess` again (result
+// reset to it, true returned); the finest level's failure stands (false).
+bool PassOverSparseLevel(bool finest, const Eigen::Isometry3d& level_guess, RegistrationResult& result);
+
 FrameRegistration RegisterSnicp(const SnicpFrame& target, const SnicpFrame& source, const Eigen::Isometry3d& guess,
                                 NicpOptions nicp, const SnicpOptions& options);
 

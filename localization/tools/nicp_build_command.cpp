@@ -73,11 +73,8 @@ Args ParseArgs(int argc, char** argv) {
     }
     else if (arg == "--inverse-depth-weights") a.options.nicp.inverse_depth_weights = true;
     else if (arg == "--flat-curvature") {
-      const double sigma = maps::cli::ParseNumber(kTool, arg, value());
-      if (!(sigma >= 0.0 && sigma <= 1.0)) {
-        Fail(1, "build --mode nicp: --flat-curvature is a curvature sigma in [0, 1]");
-      }
-      a.options.frames.depth_statistics.flat_curvature = static_cast<float>(sigma);
+      a.options.frames.depth_statistics.flat_curvature =
+          static_cast<float>(maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
     }
     else if (arg == "--intrinsics") {
       const auto v = maps::cli::ParseNumberList(kTool, arg, value(), 4);

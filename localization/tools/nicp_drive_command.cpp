@@ -125,7 +125,7 @@ bool ParseNicpDriveFlag(int argc, char** argv, int& i, NicpDriveArgs& a) {
   else if (arg == "--pyramid") a.options.lidar_pyramid = ParsePyramid(arg, value(), a.options.frames.lidar_columns);
   else if (arg == "--pyramid-iterations") a.options.pyramid_iterations = integer(1000);
   else if (arg == "--min-inlier-share") {
-    a.options.min_inlier_share = static_cast<float>(maps::cli::ParseNumber(kTool, arg, value()));
+    a.options.min_inlier_share = static_cast<float>(maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
   } else if (arg == "--max-frames") a.options.max_revolutions = integer(1 << 30);
   else if (arg == "--no-deskew") a.options.deskew = false;
   else if (arg == "--inverse-depth-weights") a.options.nicp.inverse_depth_weights = true;
@@ -148,10 +148,6 @@ void CheckNicpDriveArgs(const NicpDriveArgs& a, const std::string& mode, const c
   const bool can = a.options.can_log.has_value();
   if (can != a.options.dbc.has_value() || can != a.options.odometry_config.has_value()) {
     Fail(1, "build --mode " + mode + " DRIVE: --can, --dbc and --odometry go together");
-  }
-  const float share = a.options.min_inlier_share;
-  if (!(share >= 0.0F && share <= 1.0F)) {
-    Fail(1, "build --mode " + mode + " DRIVE: --min-inlier-share is a share in [0, 1]");
   }
 }
 

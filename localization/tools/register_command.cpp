@@ -75,7 +75,8 @@ void SetRadius(RegisterArgs& a, float radius) {
   a.frames.unorganized_statistics.radius_m = radius;
 }
 
-void SetFlatCurvature(RegisterArgs& a, float sigma) {
+void SetFlatCurvature(RegisterArgs& a, double value) {
+  const auto sigma = static_cast<float>(value);
   a.frames.depth_statistics.flat_curvature = sigma;
   a.frames.lidar_statistics.flat_curvature = sigma;
   a.frames.unorganized_statistics.flat_curvature = sigma;
@@ -103,11 +104,7 @@ RegisterArgs ParseArgs(int argc, char** argv) {
     else if (arg == "--alpha") a.nicp.kdtree_alpha = static_cast<float>(number());
     else if (arg == "--iterations") a.nicp.iterations = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1000));
     else if (arg == "--radius") SetRadius(a, static_cast<float>(number()));
-    else if (arg == "--flat-curvature") {
-      const double sigma = number();
-      if (!(sigma >= 0.0 && sigma <= 1.0)) Fail(1, "register: --flat-curvature is a curvature sigma in [0, 1]");
-      SetFlatCurvature(a, static_cast<float>(sigma));
-    }
+    else if (arg == "--flat-curvature") SetFlatCurvature(a, maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
     else if (arg == "--max-distance") a.nicp.max_distance_m = static_cast<float>(number());
     else if (arg == "--chi2-bound") a.nicp.chi2_bound = number();
     else if (arg == "--image-scale") a.frames.image_scale = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 8));

@@ -1,6 +1,7 @@
 #include "maps/tools/cli_args.hpp"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 
@@ -24,6 +25,25 @@ double ParseNumber(std::string_view tool, std::string_view flag, const char* tex
   const double value = std::strtod(text, &end);
   if (end == text || *end != '\0' || errno != 0) {
     Fail(tool, 1, std::string(flag) + ": not a number: " + text);
+  }
+  return value;
+}
+
+namespace {
+
+std::string FormatNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+}  // namespace
+
+double ParseNumberIn(std::string_view tool, std::string_view flag, const char* text, double min, double max) {
+  const double value = ParseNumber(tool, flag, text);
+  if (!(value >= min && value <= max)) {
+    Fail(tool, 1, std::string(flag) + ": expected a number from " + FormatNumber(min) + " to " + FormatNumber(max) +
+                      ", got " + text);
   }
   return value;
 }

@@ -17,6 +17,8 @@ const char* OptionValue(std::string_view tool, int argc, char** argv, int& i);
 
 // The value of option `flag`, or Fail(1) naming the flag and the text.
 double ParseNumber(std::string_view tool, std::string_view flag, const char* text);
+// ... within [min, max], or Fail(1) naming the flag and the range.
+double ParseNumberIn(std::string_view tool, std::string_view flag, const char* text, double min, double max);
 std::int64_t ParseInteger(std::string_view tool, std::string_view flag, const char* text,
                           std::int64_t min, std::int64_t max);
 // `count` comma-separated numbers ("1.5,-2,0.1"), or Fail(1) naming the flag.
