@@ -196,6 +196,21 @@ RangeFrame FrameFromCloud(const hal::cloud::PointCloud& cloud, SensorModel senso
   return frame;
 }
 
+void RefitStatistics(const RangeFrameOptions& options, float radius_m, RangeFrame& frame) {
+  frame.cloud.Resize(frame.cloud.size());  // every normal undefined until fitted again
+  frame.statistics_radius_m = radius_m;
+  if (!frame.organized()) {
+    SurfaceStatisticsOptions statistics = options.unorganized_statistics;
+    statistics.radius_m = radius_m;
+    ComputeNeighbourStatistics(statistics, options.viewpoint, frame.cloud);
+    return;
+  }
+  SurfaceStatisticsOptions statistics =
+      frame.sensor == SensorModel::kPinhole ? options.depth_statistics : options.lidar_statistics;
+  statistics.radius_m = radius_m;
+  SurfaceStatistics(statistics).Compute(frame.projection, frame.image, frame.cloud);
+}
+
 Result<RangeFrame> LoadRangeFrame(const std::filesystem::path& path, const RangeFrameOptions& options) {
   const std::string extension = path.extension().string();
   if (extension == ".png") {

@@ -66,6 +66,11 @@ RangeFrame FrameFromDepth(const hal::cloud::DepthImage& depth, const RangeFrameO
 // The points of every scale-th pixel and row of `depth` (intrinsics scaled to match) and
 // their index image, statistics not yet computed (SNICP's pyramid levels).
 RangeFrame UnprojectDepth(const hal::cloud::DepthImage& depth, const RangeFrameOptions& options, int scale);
+// The frame's statistics fitted again over radius R (points, projection and index image
+// unchanged), with the options of its sensor from `options`: the later radii of a
+// coarse-to-fine registration (RegisterFramesOverRadii).
+void RefitStatistics(const RangeFrameOptions& options, float radius_m, RangeFrame& frame);
+
 // `sensor` kAuto: a Velodyne model whose laser elevations the points match, else unorganized.
 RangeFrame FrameFromCloud(const hal::cloud::PointCloud& cloud, SensorModel sensor, const RangeFrameOptions& options);
 
