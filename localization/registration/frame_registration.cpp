@@ -1,5 +1,6 @@
 #include "localization/registration/frame_registration.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <memory>
@@ -56,6 +57,39 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
   registration.result = Nicp(options).Register(target.cloud, *finder, source.cloud, guess);
   registration.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return registration;
+}
+
+FrameRegistration RegisterFramesOverRadii(const maps::range3d::RangeFrameOptions& frames,
+                                          const std::vector<float>& radii_m, maps::range3d::RangeFrame& target,
+                                          maps::range3d::RangeFrame& source, const Eigen::Isometry3d& guess,
+                                          RegistrationMethod method, const NicpOptions& options,
+                                          CorrespondenceMode mode) {
+  const int stages = std::max<int>(1, static_cast<int>(radii_m.size()));
+  FrameRegistration total;
+  total.result.target_T_source = guess;
+  double refit_seconds = 0.0;
+  for (int stage = 0; stage < stages; ++stage) {
+    if (stage > 0) {
+      const auto start = std::chrono::steady_clock::now();
+      const float radius = radii_m[static_cast<std::size_t>(stage)];
+      maps::range3d::RefitStatistics(frames, radius, target);
+      maps::range3d::RefitStatistics(frames, radius, source);
+      refit_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    NicpOptions stage_options = options;
+    stage_options.iterations = options.iterations / stages + (stage < options.iterations % stages ? 1 : 0);
+    if (stage_options.iterations == 0) continue;
+    const FrameRegistration step =
+        RegisterFrames(target, source, total.result.target_T_source, method, stage_options, mode);
+    const int iterations = total.result.iterations + step.result.iterations;
+    const double seconds = total.seconds + step.seconds;
+    total = step;
+    total.result.iterations = iterations;
+    total.seconds = seconds;
+    if (!step.result.ok()) break;
+  }
+  total.seconds += refit_seconds;
+  return total;
 }
 
 }  // namespace flat2d::localization::registration
