@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "hal/cloud/tum_depth_png.hpp"
 #include "hal/trajectory/transform_file.hpp"
@@ -29,7 +30,9 @@ elevation bins) registers by projection into its image, an unorganized one by KD
   --alpha A             KD-tree mode: the weight of normals against positions, metres
                         (default 1/3, Eq. 6.10; scale it with the scene)
   --iterations N        (default 10)
-  --radius M            the surface statistics radius R (default 0.1 depth and PLY, 0.3 LiDAR)
+  --radius M[,M...]     the surface statistics radius R; several: coarse to fine, the
+                        iterations shared out evenly and both clouds refitted before each
+                        later R (default 0.1,0.03 depth images, 0.3,0.1 LiDAR, 0.1 PLY)
   --flat-curvature S    sigma below which a surface is a disc (Eq. 5.2; default 0.02)
   --max-distance M      eps_d of Eq. 5.6 (default 0.5)
   --image-scale N       depth images: every N-th pixel and row (default 1: all of them);
@@ -62,6 +65,7 @@ struct RegisterArgs {
   registration::CorrespondenceMode mode = registration::CorrespondenceMode::kAuto;
   registration::NicpOptions nicp;
   maps::range3d::RangeFrameOptions frames;
+  std::optional<std::vector<float>> radii;  // --radius, coarse to fine; else per sensor
   bool snicp = false;
   registration::SnicpOptions snicp_options;
   bool json = false;
@@ -73,6 +77,21 @@ void SetRadius(RegisterArgs& a, float radius) {
   a.frames.depth_statistics.radius_m = radius;
   a.frames.lidar_statistics.radius_m = radius;
   a.frames.unorganized_statistics.radius_m = radius;
+}
+
+void SetRadii(RegisterArgs& a, const std::vector<double>& radii) {
+  SetRadius(a, static_cast<float>(radii.front()));
+  a.radii.emplace();
+  for (const double radius : radii) a.radii->push_back(static_cast<float>(radius));
+}
+
+// --radius, or the defaults: coarse to fine on organized frames, one radius on
+// unorganized clouds (the bunny's scans have their own scale).
+std::vector<float> RadiiFor(const RegisterArgs& a, const maps::range3d::RangeFrame& target) {
+  if (a.radii) return *a.radii;
+  if (!target.organized()) return {target.statistics_radius_m};
+  const bool depth = target.sensor == maps::range3d::SensorModel::kPinhole;
+  return {target.statistics_radius_m, depth ? registration::kDepthFineRadiusM : registration::kLidarFineRadiusM};
 }
 
 void SetFlatCurvature(RegisterArgs& a, double value) {
@@ -103,7 +122,7 @@ RegisterArgs ParseArgs(int argc, char** argv) {
     } else if (arg == "--kdtree") a.mode = registration::CorrespondenceMode::kKdTree;
     else if (arg == "--alpha") a.nicp.kdtree_alpha = static_cast<float>(number());
     else if (arg == "--iterations") a.nicp.iterations = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1000));
-    else if (arg == "--radius") SetRadius(a, static_cast<float>(number()));
+    else if (arg == "--radius") SetRadii(a, maps::cli::ParseDecreasing(kTool, arg, value(), 1e-4, 100.0));
     else if (arg == "--flat-curvature") SetFlatCurvature(a, maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
     else if (arg == "--max-distance") a.nicp.max_distance_m = static_cast<float>(number());
     else if (arg == "--chi2-bound") a.nicp.chi2_bound = number();
@@ -220,7 +239,8 @@ int RegisterCommand(int argc, char** argv) {
   } else {
     source = LoadOrFail(a.source, a.frames);
     target = LoadOrFail(a.target, a.frames);
-    r = registration::RegisterFrames(target.frame, source.frame, guess, a.method, a.nicp, a.mode);
+    r = registration::RegisterFramesOverRadii(a.frames, RadiiFor(a, target.frame), target.frame, source.frame, guess,
+                                              a.method, a.nicp, a.mode);
   }
   if (a.json) PrintJson(r, source, target, a);
   else PrintText(r, source, target);

@@ -104,6 +104,19 @@ std::vector<int> ParseCoarseToFine(std::string_view tool, std::string_view flag,
   return scales;
 }
 
+std::vector<double> ParseDecreasing(std::string_view tool, std::string_view flag, const std::string& text, double min,
+                                    double max) {
+  std::vector<double> values;
+  for (const std::string& part : SplitCommas(text)) {
+    const double value = ParseNumberIn(tool, flag, part.c_str(), min, max);
+    if (!values.empty() && value >= values.back()) {
+      Fail(tool, 1, std::string(flag) + ": the values go coarse to fine, each smaller than the one before");
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
 std::uint32_t ParseAddress(std::string_view tool, std::string_view flag, const std::string& text) {
   const auto address = hal::net::ParseIpv4(text);
   if (!address) Fail(tool, 1, std::string(flag) + ": not an IPv4 address: " + text);

@@ -30,6 +30,10 @@ std::vector<std::int64_t> ParseIntegerList(std::string_view tool, std::string_vi
 // A pyramid's scales ("4,2,1"): integers within [1, max], coarse to fine (each smaller
 // than the one before), or Fail(1) naming the flag.
 std::vector<int> ParseCoarseToFine(std::string_view tool, std::string_view flag, const std::string& text, int max);
+// Comma-separated numbers within [min, max], coarse to fine (each smaller than the one
+// before: "0.1,0.03"), or Fail(1) naming the flag.
+std::vector<double> ParseDecreasing(std::string_view tool, std::string_view flag, const std::string& text, double min,
+                                    double max);
 std::uint32_t ParseAddress(std::string_view tool, std::string_view flag, const std::string& text);
 
 }  // namespace flat2d::maps::cli
