@@ -59,26 +59,49 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
   return registration;
 }
 
+namespace {
+
+// Iterations per radius: the last refines from near the optimum and takes
+// kFineRadiusIterations (half of them all when fewer than twice that); the earlier radii
+// share the rest evenly, the first ones taking the remainder.
+constexpr int kFineRadiusIterations = 5;
+
+std::vector<int> IterationsPerRadius(int iterations, std::size_t radii) {
+  std::vector<int> counts(std::max<std::size_t>(radii, 1), 0);
+  if (counts.size() == 1) {
+    counts[0] = iterations;
+    return counts;
+  }
+  counts.back() = std::min(kFineRadiusIterations, iterations / 2);
+  const int coarse = iterations - counts.back();
+  const auto stages = static_cast<int>(counts.size()) - 1;
+  for (int stage = 0; stage < stages; ++stage) {
+    counts[static_cast<std::size_t>(stage)] = coarse / stages + (stage < coarse % stages ? 1 : 0);
+  }
+  return counts;
+}
+
+}  // namespace
+
 FrameRegistration RegisterFramesOverRadii(const maps::range3d::RangeFrameOptions& frames,
                                           const std::vector<float>& radii_m, maps::range3d::RangeFrame& target,
                                           maps::range3d::RangeFrame& source, const Eigen::Isometry3d& guess,
                                           RegistrationMethod method, const NicpOptions& options,
                                           CorrespondenceMode mode) {
-  const int stages = std::max<int>(1, static_cast<int>(radii_m.size()));
+  const std::vector<int> counts = IterationsPerRadius(options.iterations, radii_m.size());
   FrameRegistration total;
   total.result.target_T_source = guess;
   double refit_seconds = 0.0;
-  for (int stage = 0; stage < stages; ++stage) {
+  for (std::size_t stage = 0; stage < counts.size(); ++stage) {
+    if (counts[stage] == 0) continue;
     if (stage > 0) {
       const auto start = std::chrono::steady_clock::now();
-      const float radius = radii_m[static_cast<std::size_t>(stage)];
-      maps::range3d::RefitStatistics(frames, radius, target);
-      maps::range3d::RefitStatistics(frames, radius, source);
+      maps::range3d::RefitStatistics(frames, radii_m[stage], target);
+      maps::range3d::RefitStatistics(frames, radii_m[stage], source);
       refit_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     NicpOptions stage_options = options;
-    stage_options.iterations = options.iterations / stages + (stage < options.iterations % stages ? 1 : 0);
-    if (stage_options.iterations == 0) continue;
+    stage_options.iterations = counts[stage];
     const FrameRegistration step =
         RegisterFrames(target, source, total.result.target_T_source, method, stage_options, mode);
     const int iterations = total.result.iterations + step.result.iterations;

@@ -42,8 +42,9 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
 // normals fitted over a wide R are smooth enough to pull a pair in from afar, normals over
 // a small one follow the surface more closely and so land nearer the truth. The first
 // radius is the one the frames were prepared with; before each later one both frames are
-// refitted. options.iterations is shared out evenly (the first radii take the remainder),
-// so the work of the iterations is that of one radius. `seconds` includes the refits.
+// refitted. options.iterations is shared out: the last radius, which refines from near
+// the optimum, takes 5 (half when there are fewer than 10), the earlier ones the rest, so
+// the work of the iterations is that of one radius. `seconds` includes the refits.
 // A stage that fails ends the registration with its result.
 FrameRegistration RegisterFramesOverRadii(const maps::range3d::RangeFrameOptions& frames,
                                           const std::vector<float>& radii_m, maps::range3d::RangeFrame& target,
