@@ -58,7 +58,10 @@ registration::FrameRegistration RegisterToPrevious(const registration::SnicpFram
                                                    const Eigen::Isometry3d& guess, const NicpBuildOptions& options,
                                                    const registration::SnicpOptions& snicp) {
   if (options.snicp) return registration::RegisterSnicp(previous, frame, guess, options.nicp, snicp);
-  return registration::RegisterFrames(previous.levels.back(), frame.levels.back(), guess, options.method, options.nicp);
+  // Refitting changes the frames, and the kept one must start the next pair at the first radius.
+  maps::range3d::RangeFrame target = previous.levels.back(), source = frame.levels.back();
+  return registration::RegisterFramesOverRadii(options.frames, options.frame_radii, target, source, guess,
+                                               options.method, options.nicp);
 }
 
 Status WriteOutputs(const std::filesystem::path& out_dir, const std::vector<hal::trajectory::StampedPose>& trajectory,

@@ -27,6 +27,10 @@ struct NicpBuildOptions {
   maps::range3d::RangeFrameOptions frames;
   bool snicp = false;             // SNICP (5.2) instead of `method`
   registration::SnicpOptions snicp_options;  // its pyramid, relative to frames.image_scale
+  // Frame to frame NICP: coarse-to-fine statistics radii (RegisterFramesOverRadii), the
+  // first being frames.depth_statistics.radius_m; one entry: that radius alone. The model
+  // tracker fits over the first.
+  std::vector<float> frame_radii{0.1F, registration::kDepthFineRadiusM};
   bool constant_velocity = true;  // false: every pair starts from identity
   bool frame_to_model = true;     // false: frame to frame
   maps::range3d::SurfelModelOptions model;

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "localization/evaluation/trajectory_error.hpp"
 #include "localization/tools/nicp_build.hpp"
@@ -28,6 +29,9 @@ stamps) and DIR/model.ply (the merged model's points and normals, or every 10th 
   --iterations N        (default 10)
   --inverse-depth-weights  weigh each pair by 1 / (d_i d_j), the points' depths (Eq. 6.7)
   --flat-curvature S    sigma below which a surface is a disc (Eq. 5.2; default 0.02)
+  --radius M[,M...]     the statistics radius R; frame to frame NICP refines coarse to
+                        fine as `register` does (default 0.1,0.03); the model tracker fits
+                        over the first
   --intrinsics FX,FY,CX,CY  (default 525,525,319.5,239.5)
   --json                a summary: frames, failures, frame_ms_p50/p95 (statistics of the
                         new frame + registration), registration_ms_p50, load_ms_p50
@@ -75,6 +79,11 @@ Args ParseArgs(int argc, char** argv) {
     else if (arg == "--flat-curvature") {
       a.options.frames.depth_statistics.flat_curvature =
           static_cast<float>(maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
+    }
+    else if (arg == "--radius") {
+      const std::vector<double> radii = maps::cli::ParseDecreasing(kTool, arg, value(), 1e-4, 100.0);
+      a.options.frame_radii.assign(radii.begin(), radii.end());
+      a.options.frames.depth_statistics.radius_m = a.options.frame_radii.front();
     }
     else if (arg == "--intrinsics") {
       const auto v = maps::cli::ParseNumberList(kTool, arg, value(), 4);
