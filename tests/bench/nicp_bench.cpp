@@ -38,6 +38,20 @@ std::optional<hal::cloud::DepthImage> LoadDepth(const std::string& name) {
   return std::move(*depth);
 }
 
+// Two consecutive fr1/rpy frames 37 ms apart, or the benchmark skipped without the data.
+struct DepthPair {
+  hal::cloud::DepthImage previous, current;
+};
+std::optional<DepthPair> LoadDepthPairOrSkip(benchmark::State& state) {
+  auto previous = LoadDepth("1305031229.825630.png");
+  auto current = LoadDepth("1305031229.863062.png");
+  if (!previous || !current) {
+    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
+    return std::nullopt;
+  }
+  return DepthPair{std::move(*previous), std::move(*current)};
+}
+
 maps::range3d::RangeFrameOptions DepthOptions(int scale) {
   maps::range3d::RangeFrameOptions options;
   options.image_scale = scale;
@@ -46,17 +60,14 @@ maps::range3d::RangeFrameOptions DepthOptions(int scale) {
 
 // The new frame's statistics, then its registration to the previous frame.
 void BM_NicpDepthPair(benchmark::State& state, RegistrationMethod method) {
-  const auto previous = LoadDepth("1305031229.825630.png");
-  const auto current = LoadDepth("1305031229.863062.png");
-  if (!previous || !current) {
-    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
-    return;
-  }
+  const auto pair = LoadDepthPairOrSkip(state);
+  if (!pair) return;
+  const auto& [previous, current] = *pair;
   const auto options = DepthOptions(static_cast<int>(state.range(0)));
-  const maps::range3d::RangeFrame target = maps::range3d::FrameFromDepth(*previous, options);
+  const maps::range3d::RangeFrame target = maps::range3d::FrameFromDepth(previous, options);
   int inliers = 0;
   for (auto _ : state) {
-    const maps::range3d::RangeFrame source = maps::range3d::FrameFromDepth(*current, options);
+    const maps::range3d::RangeFrame source = maps::range3d::FrameFromDepth(current, options);
     const auto r = RegisterFrames(target, source, Eigen::Isometry3d::Identity(), method, {});
     inliers = r.result.inliers;
     benchmark::DoNotOptimize(r.result.target_T_source);
@@ -73,21 +84,18 @@ BENCHMARK_CAPTURE(BM_NicpDepthPair, point_to_plane, RegistrationMethod::kPointTo
 // target's refit is counted too (a frame-to-frame tracker would keep it from the frame's
 // own turn as the new one).
 void BM_NicpDepthPairRadii(benchmark::State& state) {
-  const auto previous = LoadDepth("1305031229.825630.png");
-  const auto current = LoadDepth("1305031229.863062.png");
-  if (!previous || !current) {
-    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
-    return;
-  }
+  const auto pair = LoadDepthPairOrSkip(state);
+  if (!pair) return;
+  const auto& [previous, current] = *pair;
   const auto options = DepthOptions(static_cast<int>(state.range(0)));
-  const maps::range3d::RangeFrame prepared_target = maps::range3d::FrameFromDepth(*previous, options);
+  const maps::range3d::RangeFrame prepared_target = maps::range3d::FrameFromDepth(previous, options);
   const std::vector<float> radii{options.depth_statistics.radius_m, localization::registration::kDepthFineRadiusM};
   int inliers = 0;
   for (auto _ : state) {
     state.PauseTiming();
     maps::range3d::RangeFrame target = prepared_target;
     state.ResumeTiming();
-    maps::range3d::RangeFrame source = maps::range3d::FrameFromDepth(*current, options);
+    maps::range3d::RangeFrame source = maps::range3d::FrameFromDepth(current, options);
     const auto r = localization::registration::RegisterFramesOverRadii(
         options, radii, target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, {});
     inliers = r.result.inliers;
@@ -100,18 +108,15 @@ BENCHMARK(BM_NicpDepthPairRadii)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
 // SNICP (5.2): the new frame's pyramid with cross-product normals, then 3 iterations at
 // each of 1/4, 1/2 and 1 of the working resolution, every Arg-th pixel of the camera's.
 void BM_SnicpDepthPair(benchmark::State& state) {
-  const auto previous = LoadDepth("1305031229.825630.png");
-  const auto current = LoadDepth("1305031229.863062.png");
-  if (!previous || !current) {
-    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
-    return;
-  }
+  const auto pair = LoadDepthPairOrSkip(state);
+  if (!pair) return;
+  const auto& [previous, current] = *pair;
   const auto frames = DepthOptions(static_cast<int>(state.range(0)));
   const localization::registration::SnicpOptions options;
-  const auto target = localization::registration::MakeSnicpFrame(*previous, frames, options);
+  const auto target = localization::registration::MakeSnicpFrame(previous, frames, options);
   int inliers = 0;
   for (auto _ : state) {
-    const auto source = localization::registration::MakeSnicpFrame(*current, frames, options);
+    const auto source = localization::registration::MakeSnicpFrame(current, frames, options);
     const auto r = localization::registration::RegisterSnicp(target, source, Eigen::Isometry3d::Identity(), {}, options);
     inliers = r.result.inliers;
     benchmark::DoNotOptimize(r.result.target_T_source);
@@ -146,15 +151,12 @@ BENCHMARK(BM_DepthStatistics)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisec
 // One NICP iteration's two halves on the 640x480 pair at the identity: the projective
 // correspondence search (source index image + tests of Eq. 5.6-5.8) and the linear system.
 void BM_NicpIterationParts(benchmark::State& state) {
-  const auto previous = LoadDepth("1305031229.825630.png");
-  const auto current = LoadDepth("1305031229.863062.png");
-  if (!previous || !current) {
-    state.SkipWithError("real data not found: TUM fr1/rpy depth frames (set FLAT2D_DATA)");
-    return;
-  }
+  const auto pair = LoadDepthPairOrSkip(state);
+  if (!pair) return;
+  const auto& [previous, current] = *pair;
   const auto options = DepthOptions(1);
-  const maps::range3d::RangeFrame target = maps::range3d::FrameFromDepth(*previous, options);
-  const maps::range3d::RangeFrame source = maps::range3d::FrameFromDepth(*current, options);
+  const maps::range3d::RangeFrame target = maps::range3d::FrameFromDepth(previous, options);
+  const maps::range3d::RangeFrame source = maps::range3d::FrameFromDepth(current, options);
   localization::registration::ProjectiveCorrespondenceFinder finder(target.cloud, target.projection, &target.image);
   const localization::registration::NicpOptions nicp;
   const Eigen::Isometry3f identity = Eigen::Isometry3f::Identity();
