@@ -59,13 +59,6 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
   return registration;
 }
 
-namespace {
-
-// Iterations per radius: the last refines from near the optimum and takes
-// kFineRadiusIterations (half of them all when fewer than twice that); the earlier radii
-// share the rest evenly, the first ones taking the remainder.
-constexpr int kFineRadiusIterations = 5;
-
 std::vector<int> IterationsPerRadius(int iterations, std::size_t radii) {
   std::vector<int> counts(std::max<std::size_t>(radii, 1), 0);
   if (counts.size() == 1) {
@@ -80,8 +73,6 @@ std::vector<int> IterationsPerRadius(int iterations, std::size_t radii) {
   }
   return counts;
 }
-
-}  // namespace
 
 FrameRegistration RegisterFramesOverRadii(const maps::range3d::RangeFrameOptions& frames,
                                           const std::vector<float>& radii_m, maps::range3d::RangeFrame& target,

@@ -42,9 +42,8 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
 // normals fitted over a wide R are smooth enough to pull a pair in from afar, normals over
 // a small one follow the surface more closely and so land nearer the truth. The first
 // radius is the one the frames were prepared with; before each later one both frames are
-// refitted. options.iterations is shared out: the last radius, which refines from near
-// the optimum, takes 5 (half when there are fewer than 10), the earlier ones the rest, so
-// the work of the iterations is that of one radius. `seconds` includes the refits.
+// refitted. options.iterations is shared out by IterationsPerRadius, so the work of the
+// iterations is that of one radius. `seconds` includes the refits.
 // A stage that fails ends the registration with its result.
 FrameRegistration RegisterFramesOverRadii(const maps::range3d::RangeFrameOptions& frames,
                                           const std::vector<float>& radii_m, maps::range3d::RangeFrame& target,
@@ -52,11 +51,18 @@ FrameRegistration RegisterFramesOverRadii(const maps::range3d::RangeFrameOptions
                                           RegistrationMethod method, const NicpOptions& options,
                                           CorrespondenceMode mode = CorrespondenceMode::kAuto);
 
+// Iterations per radius of RegisterFramesOverRadii: the last radius refines from near the
+// optimum and takes kFineRadiusIterations (half of them all when fewer than twice that);
+// the earlier radii share the rest evenly, the first ones taking the remainder.
+inline constexpr int kFineRadiusIterations = 5;
+std::vector<int> IterationsPerRadius(int iterations, std::size_t radii);
+
 // The radius refined to after the sensor's R (docs/benchmarks.md, "Coarse-to-fine
 // statistics radius"). Depth cameras, after 0.1 m (5.1.1): over the 50 TUM fr1/rpy pairs
 // 0.03 m beat 0.05 and 0.1 in accuracy, and starting at 0.1 keeps the frame skips and
-// perturbations that 0.03 alone loses. LiDAR, after 0.3 m: 0.1 m brings KITTI, VLP-16
-// and HDL-32E pairs nearer their references and widens their basins.
+// perturbations that 0.03 alone loses. LiDAR, after 0.3 m: 0.1 m brings the KITTI and
+// VLP-16 pairs nearer their truth (and the HDL-32E pair's rotation nearer its references)
+// and widens the VLP-16 and HDL-32E basins; 0.05 m would lose KITTI pairs.
 inline constexpr float kDepthFineRadiusM = 0.03F;
 inline constexpr float kLidarFineRadiusM = 0.1F;
 

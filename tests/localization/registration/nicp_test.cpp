@@ -1,4 +1,5 @@
 #include "localization/registration/nicp.hpp"
+#include "localization/registration/frame_registration.hpp"
 #include "localization/registration/linear_system.hpp"
 #include "localization/registration/snicp.hpp"
 
@@ -138,6 +139,59 @@ TEST(Snicp, ThePyramidStandsOnTheWorkingResolution) {
     std::printf("snicp at 160x120, trial %d: %.2f mm %.3f deg\n", trial, 1e3 * e.translation_m, e.rotation_deg);
     EXPECT_LT(e.translation_m, 0.001) << "trial " << trial;
     EXPECT_LT(e.rotation_deg, 0.02) << "trial " << trial;
+  }
+}
+
+TEST(NicpOverRadii, TheLastRadiusTakesFiveIterationsTheCoarseOnesTheRest) {
+  EXPECT_EQ(IterationsPerRadius(10, 1), (std::vector<int>{10}));
+  EXPECT_EQ(IterationsPerRadius(10, 2), (std::vector<int>{5, 5}));
+  EXPECT_EQ(IterationsPerRadius(30, 2), (std::vector<int>{25, 5}));
+  EXPECT_EQ(IterationsPerRadius(7, 2), (std::vector<int>{4, 3}));
+  EXPECT_EQ(IterationsPerRadius(1, 2), (std::vector<int>{1, 0}));
+  EXPECT_EQ(IterationsPerRadius(10, 3), (std::vector<int>{3, 2, 5}));
+  EXPECT_EQ(IterationsPerRadius(10, 0), (std::vector<int>{10}));
+}
+
+// The coarse-to-fine schedule: one radius is RegisterFrames itself; two share the
+// iterations (the last radius 5 of 10, 5 of 30) and land on seeded motions.
+TEST(NicpOverRadii, SharesTheIterationsAndRecoversSeededMotions) {
+  const PinholeIntrinsics intrinsics;
+  const Eigen::Isometry3f world_T_target = CameraPose();
+  maps::range3d::RangeFrameOptions frames;
+  frames.image_scale = 4;
+  std::mt19937 noise(9);
+  auto frame = [&](const Eigen::Isometry3f& pose) {
+    return maps::range3d::FrameFromDepth(testing::RenderDepth(testing::OfficeRoom(), intrinsics, pose, 0.002F, noise),
+                                         frames);
+  };
+  const maps::range3d::RangeFrame target = frame(world_T_target);
+  std::mt19937 rng(44);
+  for (int trial = 0; trial < 3; ++trial) {
+    const Eigen::Isometry3f target_T_source = RandomMotion(rng, 3.0F * static_cast<float>(M_PI) / 180.0F, 0.03F);
+    const maps::range3d::RangeFrame source = frame(world_T_target * target_T_source);
+    maps::range3d::RangeFrame t1 = target, s1 = source, t2 = target, s2 = source;
+    const FrameRegistration alone = RegisterFrames(target, source, Eigen::Isometry3d::Identity(),
+                                                   RegistrationMethod::kNicp, NicpOptions{});
+    const FrameRegistration one = RegisterFramesOverRadii(frames, {0.1F}, t1, s1, Eigen::Isometry3d::Identity(),
+                                                          RegistrationMethod::kNicp, NicpOptions{});
+    EXPECT_TRUE(one.result.target_T_source.isApprox(alone.result.target_T_source, 0.0));
+    EXPECT_EQ(one.result.iterations, alone.result.iterations);
+
+    NicpOptions options;
+    options.iterations = 30;
+    options.convergence_step = 0.0;  // run every iteration, to count them
+    const FrameRegistration two = RegisterFramesOverRadii(frames, {0.1F, 0.03F}, t2, s2,
+                                                          Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp,
+                                                          options);
+    ASSERT_TRUE(two.result.ok()) << FailureName(two.result.failure);
+    EXPECT_EQ(two.result.iterations, 30);
+    EXPECT_FLOAT_EQ(t2.statistics_radius_m, 0.03F);
+    EXPECT_FLOAT_EQ(s2.statistics_radius_m, 0.03F);
+    const testing::PoseError e = testing::PoseErrorOf(two.result.target_T_source, target_T_source.cast<double>());
+    std::printf("radii 0.1, 0.03 at 160x120, trial %d: %.2f mm %.3f deg\n", trial, 1e3 * e.translation_m,
+                e.rotation_deg);
+    EXPECT_LT(e.translation_m, 0.002) << "trial " << trial;
+    EXPECT_LT(e.rotation_deg, 0.05) << "trial " << trial;
   }
 }
 
