@@ -58,6 +58,9 @@ registration::FrameRegistration RegisterToPrevious(const registration::SnicpFram
                                                    const Eigen::Isometry3d& guess, const NicpBuildOptions& options,
                                                    const registration::SnicpOptions& snicp) {
   if (options.snicp) return registration::RegisterSnicp(previous, frame, guess, options.nicp, snicp);
+  if (options.frame_radii.size() < 2) {
+    return registration::RegisterFrames(previous.levels.back(), frame.levels.back(), guess, options.method, options.nicp);
+  }
   // Refitting changes the frames, and the kept one must start the next pair at the first radius.
   maps::range3d::RangeFrame target = previous.levels.back(), source = frame.levels.back();
   return registration::RegisterFramesOverRadii(options.frames, options.frame_radii, target, source, guess,
