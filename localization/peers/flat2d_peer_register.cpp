@@ -31,8 +31,8 @@ p_target = T p_source (flat2d-map register's convention), on one thread (OpenMP 
 1). Files as flat2d-map register reads them: .pcd, .ply, .bin (KITTI), .png TUM depth
 (metres = value/5000); NaN and zero-range points are dropped.
   --method M            pcl-gicp            pcl::GeneralizedIterativeClosestPoint (covariances
-                                            from the k nearest; stops on PCL's defaults,
-                                            steps below 5e-4 m and 2e-3 rad)
+                                            from the k nearest; stops on steps below
+                                            1e-4 m and 1e-4 rad, as pcl-point-to-plane)
                         pcl-point-to-plane  pcl::IterativeClosestPointWithNormals (target
                                             normals by pcl::NormalEstimation; stops on steps
                                             below 1e-4 m and 1e-4 rad)
