@@ -60,11 +60,11 @@ std::vector<int> IterationsPerRadius(int iterations, std::size_t radii);
 // The radius refined to after the sensor's R (docs/benchmarks.md, "Coarse-to-fine
 // statistics radius"). Depth cameras, after 0.1 m (5.1.1): over the 50 TUM fr1/rpy pairs
 // 0.03 m beat 0.05 and 0.1 in accuracy, and starting at 0.1 keeps the frame skips and
-// perturbations that 0.03 alone loses. LiDAR, after 0.3 m: 0.1 m brings the KITTI and
-// VLP-16 pairs nearer their truth (and the HDL-32E pair's rotation nearer its references)
-// and widens the VLP-16 and HDL-32E basins; 0.05 m suits the small indoor VLP-16 scene
-// but costs KITTI accuracy and the HDL-32E basin.
+// perturbations that 0.03 alone loses. LiDAR, after 0.3 m: 0.05 m brings the VLP-16
+// sweeps (0.53 to 0.31 mm) and KITTI pairs (25.2 to 22.9 mm) nearer their truth and the
+// HDL-32E pair's rotation nearer its references; 0.1 m is nearer on KITTI (22.3 mm) and
+// keeps all of the HDL-32E 20 deg basin (0.05 m: 90 %), but leaves VLP-16 at 0.53 mm.
 inline constexpr float kDepthFineRadiusM = 0.03F;
-inline constexpr float kLidarFineRadiusM = 0.1F;
+inline constexpr float kLidarFineRadiusM = 0.05F;
 
 }  // namespace flat2d::localization::registration

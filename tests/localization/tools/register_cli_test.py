@@ -159,9 +159,9 @@ class RegisterCli(unittest.TestCase):
         self.assertLess(t2, 0.5 * t1)
         self.assertLessEqual(both["iterations"], 10)
         self.assertEqual(both["target_T_source"], same["target_T_source"])
-        # LiDAR: 0.3 m, then 0.1 m.
+        # LiDAR: 0.3 m, then 0.05 m.
         lidar = register(self.hdl_source, self.hdl_target)
-        lidar_same = register(self.hdl_source, self.hdl_target, "--radius", "0.3,0.1")
+        lidar_same = register(self.hdl_source, self.hdl_target, "--radius", "0.3,0.05")
         lidar_one = register(self.hdl_source, self.hdl_target, "--radius", "0.3")
         self.assertEqual(lidar["target_T_source"], lidar_same["target_T_source"])
         self.assertNotEqual(lidar["target_T_source"], lidar_one["target_T_source"])
