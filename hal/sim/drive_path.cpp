@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::hal::sim {
 namespace {
@@ -21,7 +22,7 @@ std::string Fixed(double value) {
   return text;
 }
 
-double Degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
+double Degrees(double rad) { return rad * kRadToDeg; }
 
 // The waypoints as points; a loop's repeated closing waypoint is dropped.
 Result<std::vector<Eigen::Vector2d>> Waypoints(const Drive& drive) {

@@ -5,10 +5,10 @@
 #pragma once
 
 #include <cmath>
-#include <numbers>
 
 #include <Eigen/Core>
 
+#include "hal/common/angles.hpp"
 #include "hal/sim/lidar_options.hpp"
 
 namespace flat2d::hal::sim {
@@ -22,7 +22,7 @@ inline GeoRadii RadiiAt(double latitude_deg) {
   constexpr double kSemiMajorM = 6378137.0;
   constexpr double kFlattening = 1.0 / 298.257223563;
   constexpr double kE2 = kFlattening * (2.0 - kFlattening);
-  const double s = std::sin(latitude_deg * std::numbers::pi / 180.0);
+  const double s = std::sin(latitude_deg * kDegToRad);
   const double w = 1.0 - kE2 * s * s;
   return {kSemiMajorM * (1.0 - kE2) / (w * std::sqrt(w)), kSemiMajorM / std::sqrt(w)};
 }
@@ -34,18 +34,16 @@ struct LatLon {
 
 inline LatLon LocalToGeodetic(const GeoOrigin& origin, const Eigen::Vector2d& east_north) {
   const GeoRadii r = RadiiAt(origin.latitude_deg);
-  const double rad_to_deg = 180.0 / std::numbers::pi;
-  const double cos_lat = std::cos(origin.latitude_deg / rad_to_deg);
-  return {origin.latitude_deg + east_north.y() / r.meridian_m * rad_to_deg,
-          origin.longitude_deg + east_north.x() / (r.prime_vertical_m * cos_lat) * rad_to_deg};
+  const double cos_lat = std::cos(origin.latitude_deg * kDegToRad);
+  return {origin.latitude_deg + east_north.y() / r.meridian_m * kRadToDeg,
+          origin.longitude_deg + east_north.x() / (r.prime_vertical_m * cos_lat) * kRadToDeg};
 }
 
 inline Eigen::Vector2d GeodeticToLocal(const GeoOrigin& origin, const LatLon& point) {
   const GeoRadii r = RadiiAt(origin.latitude_deg);
-  const double deg_to_rad = std::numbers::pi / 180.0;
-  const double cos_lat = std::cos(origin.latitude_deg * deg_to_rad);
-  return {(point.longitude_deg - origin.longitude_deg) * deg_to_rad * r.prime_vertical_m * cos_lat,
-          (point.latitude_deg - origin.latitude_deg) * deg_to_rad * r.meridian_m};
+  const double cos_lat = std::cos(origin.latitude_deg * kDegToRad);
+  return {(point.longitude_deg - origin.longitude_deg) * kDegToRad * r.prime_vertical_m * cos_lat,
+          (point.latitude_deg - origin.latitude_deg) * kDegToRad * r.meridian_m};
 }
 
 }  // namespace flat2d::hal::sim

@@ -2,8 +2,8 @@
 
 #include <cassert>
 #include <cmath>
-#include <numbers>
 
+#include "hal/common/angles.hpp"
 #include "hal/sim/georeference.hpp"
 #include "hal/sim/stateless_random.hpp"
 
@@ -28,7 +28,7 @@ TimeNs FloorDiv(TimeNs a, TimeNs b) { return a >= 0 ? a / b : -((-a + b - 1) / b
 // True course: clockwise from north, in [0, 360), of the vehicle's x axis (world x east).
 double CourseDeg(const Eigen::Isometry3d& world_T_vehicle) {
   const Eigen::Vector3d forward = world_T_vehicle.linear().col(0);
-  const double course = std::atan2(forward.x(), forward.y()) * 180.0 / std::numbers::pi;
+  const double course = std::atan2(forward.x(), forward.y()) * kRadToDeg;
   return course < 0.0 ? course + 360.0 : course;
 }
 

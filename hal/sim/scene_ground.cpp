@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::hal::sim::internal {
 namespace {
@@ -30,7 +31,7 @@ RampSolid MakeRamp(const Ramp& ramp, double base) {
   r.start = Eigen::Vector2d(ramp.start().x(), ramp.start().y());
   r.cos_heading = std::cos(ramp.heading());
   r.sin_heading = std::sin(ramp.heading());
-  r.tan_slope = std::tan(ramp.slope_deg() * std::numbers::pi / 180.0);
+  r.tan_slope = std::tan(ramp.slope_deg() * kDegToRad);
   r.run = ramp.run_m();
   r.plateau = ramp.plateau_m();
   r.descend = ramp.descend();

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <string>
 
+#include "hal/common/angles.hpp"
 #include "hal/sim/scene_compile.hpp"
 #include "hal/sim/scene_footprint.hpp"
 
@@ -53,7 +53,7 @@ class Rasterizer {
     Eigen::AlignedBox2d bounds = internal::FootprintBounds(ramp.footprint);
     const Eigen::Vector2d grow = Eigen::Vector2d::Constant(2.0 * map_.resolution_m);
     bounds = Eigen::AlignedBox2d(bounds.min() - grow, bounds.max() + grow);
-    const double max_tan = std::tan(options_.hazard_slope_deg * std::numbers::pi / 180.0);
+    const double max_tan = std::tan(options_.hazard_slope_deg * kDegToRad);
     ForCells(bounds, [&](int col, int row, const Eigen::AlignedBox2d&) {
       if (GroundTangent(map_.CellCenter(col, row)) > max_tan) Raise(col, row, TruthClass::kHazard);
     });

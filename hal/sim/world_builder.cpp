@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "hal/common/angles.hpp"
+
 namespace flat2d::hal::sim::world {
 namespace {
 
@@ -119,7 +121,7 @@ Polyline RoundedRectangle(double x0, double y0, double x1, double y1, double rad
   const int steps = std::max(1, static_cast<int>(std::ceil(90.0 / step_deg)));
   Polyline line{{0.5 * (left + right), bottom}};
   for (int corner = 0; corner < 4; ++corner) {
-    const double start = (-90.0 + 90.0 * corner) * std::numbers::pi / 180.0;
+    const double start = (-90.0 + 90.0 * corner) * kDegToRad;
     for (int k = 0; k <= steps; ++k) {
       const double angle = start + (std::numbers::pi / 2.0) * k / steps;
       line.push_back(centres[corner] + r * Point(std::cos(angle), std::sin(angle)));

@@ -1,7 +1,8 @@
 #include "hal/velodyne/capture_summary.hpp"
 
 #include <algorithm>
-#include <numbers>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::hal::velodyne {
 namespace {
@@ -14,7 +15,7 @@ RevolutionSummary Summarize(const Revolution& revolution) {
   summary.points = revolution.points;
   summary.start_ns = revolution.start_ns();
   summary.end_ns = revolution.end_ns();
-  summary.swept_azimuth_deg = revolution.swept_azimuth_rad * 180.0 / std::numbers::pi;
+  summary.swept_azimuth_deg = revolution.swept_azimuth_rad * kRadToDeg;
   for (std::size_t f = 0; f < revolution.fans.size(); ++f) {
     const Fan& fan = revolution.fans[f];
     if (f > 0 && fan.stamp_ns < revolution.fans[f - 1].stamp_ns) summary.stamps_monotonic = false;

@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <random>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::localization::calibration {
 namespace {
@@ -64,7 +65,7 @@ std::optional<GroundPlane> FitGroundPlane(std::span<const Eigen::Vector3f> point
   if (std::ssize(candidates) < options.min_inliers) return std::nullopt;
   std::mt19937 random(options.seed);
   std::uniform_int_distribution<std::size_t> pick(0, candidates.size() - 1);
-  const double min_cos = std::cos(options.max_tilt_deg * std::numbers::pi / 180.0);
+  const double min_cos = std::cos(options.max_tilt_deg * kDegToRad);
   int best = 0;
   Eigen::Vector3d best_n = up;
   double best_d = 0.0;

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "hal/common/angles.hpp"
 
 namespace flat2d::localization::evaluation {
 
@@ -63,7 +64,7 @@ TrajectoryError EvaluateTrajectory(const std::vector<TimedPose>& estimate, const
     const Eigen::Vector2d in_reference = ref[i].Rotation().transpose() * difference;
     const double d = difference.norm();
     const double heading_error = std::abs(NormalizeAngle(aligned.theta() - ref[i].theta()));
-    const double dtheta = heading_error * 180.0 / std::numbers::pi;
+    const double dtheta = heading_error * kRadToDeg;
     distances.push_back(d);
     longitudinal.push_back(std::abs(in_reference.x()));
     lateral.push_back(std::abs(in_reference.y()));

@@ -1,9 +1,9 @@
 #include "localization/tools/drift.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <optional>
 
+#include "hal/common/angles.hpp"
 #include "localization/odometry/se2.hpp"
 #include "maps/grid/interpolated_poses.hpp"
 
@@ -23,7 +23,7 @@ Drift DriftAgainst(const std::vector<evaluation::TimedPose>& reference,
     ++drift.poses;
     drift.end_error_m = (estimate.position - truth.translation()).norm();
     drift.max_error_m = std::max(drift.max_error_m, drift.end_error_m);
-    drift.end_heading_error_deg = std::abs(NormalizeAngle(estimate.yaw - truth.theta())) * 180.0 / std::numbers::pi;
+    drift.end_heading_error_deg = std::abs(NormalizeAngle(estimate.yaw - truth.theta())) * kRadToDeg;
   }
   return drift;
 }

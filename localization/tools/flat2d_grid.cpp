@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
 
+#include "hal/common/angles.hpp"
 #include "hal/velodyne/calibration_yaml.hpp"
 #include "localization/tools/grid_run.hpp"
 #include "localization/tools/odometry_poses.hpp"
@@ -156,7 +156,7 @@ Options ParseOptions(int argc, char** argv) {
       run.stream.model = hal::velodyne::ParseModelName(name);
       if (!run.stream.model) Fail(1, std::string("unknown model: ") + name);
     } else if (arg == "--cut-angle") {
-      run.stream.revolution.cut_azimuth_rad = maps::cli::ParseNumber(kTool, arg, value()) * std::numbers::pi / 180.0;
+      run.stream.revolution.cut_azimuth_rad = maps::cli::ParseNumber(kTool, arg, value()) * kDegToRad;
     } else if (arg.starts_with("--")) {
       maps::StructureGridOptions probe;
       const char* text = value();

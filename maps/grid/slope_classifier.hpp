@@ -18,18 +18,18 @@
 // gap) are a pair too; steeper than slammable_slope, their nearer return is slammable.
 #pragma once
 
-#include <numbers>
 #include <span>
 
 #include <Eigen/Core>
 
+#include "hal/common/angles.hpp"
 #include "maps/grid/cell_class.hpp"
 
 namespace flat2d::maps {
 
 struct SlopeThresholds {
-  double hazard_slope_rad = 15.0 * std::numbers::pi / 180.0;
-  double slammable_slope_rad = 80.0 * std::numbers::pi / 180.0;
+  double hazard_slope_rad = 15.0 * kDegToRad;
+  double slammable_slope_rad = 80.0 * kDegToRad;
   int fit_points = 2;  // returns per slope estimate, >= 2 (the dummy return counts)
   // Step (5) for returns at most this high above the ground; 0 disables it. Bounded so that
   // a canopy above the ground it overhangs (tree crowns start at 2-3 m) is no wall.

@@ -4,12 +4,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "hal/common/angles.hpp"
 #include "hal/net/datagram_source.hpp"
 #include "hal/velodyne/calibration_yaml.hpp"
 #include "hal/velodyne/capture_summary.hpp"
@@ -84,7 +84,7 @@ Options ParseOptions(int argc, char** argv) {
     } else if (arg == "--calibration") {
       options.calibration = value();
     } else if (arg == "--cut-angle") {
-      options.summary.stream.revolution.cut_azimuth_rad = ParseNumber(arg, value()) * std::numbers::pi / 180.0;
+      options.summary.stream.revolution.cut_azimuth_rad = ParseNumber(arg, value()) * kDegToRad;
     } else if (arg == "--data-port") {
       options.summary.stream.data_port = ParsePort(arg, value());
     } else if (arg == "--position-port") {
