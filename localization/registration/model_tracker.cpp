@@ -7,6 +7,7 @@
 
 #include "hal/common/time.hpp"
 #include "localization/registration/correspondence_finder.hpp"
+#include "localization/registration/frame_registration.hpp"
 #include "localization/registration/nicp.hpp"
 #include "localization/registration/rigid_transform.hpp"
 
@@ -45,6 +46,25 @@ float PointsWithNormals(const maps::range3d::SurfelCloud& cloud) {
   return static_cast<float>(count);
 }
 
+maps::range3d::SurfaceStatisticsOptions FineStatistics(const ModelTrackerOptions& options) {
+  maps::range3d::SurfaceStatisticsOptions statistics = options.fine_statistics;
+  statistics.radius_m = options.fine_radius_m;
+  return statistics;
+}
+
+// The scaling RegisterFrames gives the normal term: its weight is for R = 0.1 m
+// (nicp_options.hpp).
+double NormalWeightAt(const NicpOptions& options, float radius_m) {
+  const double ratio = static_cast<double>(radius_m) / kNormalWeightRadiusM;
+  return options.normal_weight * ratio * ratio;
+}
+
+// `out` takes `points` with every normal undefined until fitted (its buffers kept).
+void ResetTo(const std::vector<Eigen::Vector3f>& points, maps::range3d::SurfelCloud& out) {
+  out.points.assign(points.begin(), points.end());
+  out.Resize(points.size());
+}
+
 // The points `frame`'s image shows in every scale-th column, into `out` (its buffers kept).
 void EveryColumn(const maps::range3d::RangeFrame& frame, int scale, maps::range3d::SurfelCloud& out) {
   out.points.clear();
@@ -71,7 +91,7 @@ ModelTracker::ModelTracker(const PinholeIntrinsics& intrinsics, const ModelTrack
     : ModelTracker(RangeProjection::Pinhole(intrinsics), options) {}
 
 ModelTracker::ModelTracker(const RangeProjection& sensor, const ModelTrackerOptions& options)
-    : options_(options), model_(options.model) {
+    : options_(options), model_(options.model), fine_statistics_(FineStatistics(options)) {
   if (!sensor.pinhole()) {
     full_view_ = sensor;
     for (const int scale : options.lidar_column_scales) {
@@ -144,28 +164,47 @@ void ModelTracker::RenderReference(const Eigen::Isometry3f& model_T_reference) {
 RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const Eigen::Isometry3d& reference_T_guess,
                                                 float& finest_points) {
   NicpOptions nicp = options_.nicp;
-  nicp.iterations = options_.iterations_per_level;
   RegistrationResult result;
   result.target_T_source = reference_T_guess;
   int iterations = 0;
   const maps::range3d::SurfelCloud* registered = nullptr;  // the last level's source
   const std::size_t levels = full_view_.pinhole() ? std::min(level_views_.size(), frame.levels.size()) : level_views_.size();
+  const std::vector<int> split = IterationsPerRadius(options_.iterations_per_level, 2);  // coarse, fine
   for (std::size_t level = 0; level < levels; ++level) {
-    // As RegisterFrames: the normal term's weight is given for R = 0.1 m (nicp_options.hpp).
+    const bool finest = level + 1 == levels;
+    const bool refine = finest && options_.fine_radius_m > 0.0F && scales_[level] == 1 && split.back() > 0;
     const float radius = (full_view_.pinhole() ? frame.levels[level] : frame.levels.back()).statistics_radius_m;
-    const double radius_ratio = static_cast<double>(radius) / kNormalWeightRadiusM;
-    nicp.normal_weight = options_.nicp.normal_weight * radius_ratio * radius_ratio;
+    nicp.normal_weight = NormalWeightAt(options_.nicp, radius);
+    nicp.iterations = refine ? split.front() : options_.iterations_per_level;
     ProjectiveCorrespondenceFinder finder(view_, level_views_[level], &level_images_[level]);
     registered = &SourceAt(frame, level);
     const Eigen::Isometry3d level_guess = result.target_T_source;
     result = Nicp(nicp).Register(view_, finder, *registered, level_guess);
     iterations += result.iterations;
-    if (PassOverSparseLevel(level + 1 == levels, level_guess, result)) continue;  // a 40 x 30 view, say
+    if (PassOverSparseLevel(finest, level_guess, result)) continue;  // a 40 x 30 view, say
     if (!result.ok()) break;
+    if (refine) {
+      nicp.iterations = split.back();
+      result = RefineOverFineRadius(frame.levels.back(), nicp, result);
+      iterations += result.iterations;
+      registered = &fine_source_;
+    }
   }
   finest_points = registered != nullptr ? PointsWithNormals(*registered) : 0.0F;
   result.iterations = iterations;
   return result;
+}
+
+RegistrationResult ModelTracker::RefineOverFineRadius(const maps::range3d::RangeFrame& finest, const NicpOptions& nicp,
+                                                      const RegistrationResult& coarse) {
+  ResetTo(view_.points, fine_view_);
+  fine_statistics_.Compute(full_view_, view_image_, fine_view_);
+  ResetTo(finest.cloud.points, fine_source_);
+  fine_statistics_.Compute(finest.projection, finest.image, fine_source_);
+  NicpOptions fine = nicp;
+  fine.normal_weight = NormalWeightAt(options_.nicp, options_.fine_radius_m);
+  ProjectiveCorrespondenceFinder finder(fine_view_, level_views_.back(), &level_images_.back());
+  return Nicp(fine).Register(fine_view_, finder, fine_source_, coarse.target_T_source);
 }
 
 const maps::range3d::SurfelCloud& ModelTracker::SourceAt(const SnicpFrame& frame, std::size_t level) {

@@ -31,7 +31,9 @@ stamps) and DIR/model.ply (the merged model's points and normals, or every 10th 
   --flat-curvature S    sigma below which a surface is a disc (Eq. 5.2; default 0.02)
   --radius M[,M...]     the statistics radius R; frame to frame NICP refines coarse to
                         fine as `register` does (default 0.1,0.03); the model tracker fits
-                        over the first
+                        over the first, unless --model-fine-radius
+  --model-fine-radius   nicp, frame to model: the last 5 iterations pair the frame's and
+                        the rendered model's normals refitted over the last --radius
   --intrinsics FX,FY,CX,CY  (default 525,525,319.5,239.5)
   --json                a summary: frames, failures, frame_ms_p50/p95 (statistics of the
                         new frame + registration), registration_ms_p50, load_ms_p50
@@ -76,6 +78,7 @@ Args ParseArgs(int argc, char** argv) {
       a.options.snicp_options.scales = maps::cli::ParseCoarseToFine(kTool, arg, value(), 64);
     }
     else if (arg == "--inverse-depth-weights") a.options.nicp.inverse_depth_weights = true;
+    else if (arg == "--model-fine-radius") a.options.model_fine_radius = true;
     else if (arg == "--flat-curvature") {
       a.options.frames.depth_statistics.flat_curvature =
           static_cast<float>(maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
@@ -94,6 +97,11 @@ Args ParseArgs(int argc, char** argv) {
     else Fail(1, "build --mode nicp: unknown argument " + std::string(arg) + "\n" + kNicpBuildUsage);
   }
   if (a.list.empty() || a.out.empty()) Fail(1, std::string("build --mode nicp needs LIST and --out DIR\n") + kNicpBuildUsage);
+  if (a.options.model_fine_radius &&
+      (a.options.snicp || !a.options.frame_to_model || a.options.frame_radii.size() < 2)) {
+    Fail(1, "build: --model-fine-radius refines the model tracker (--tracking model) of nicp or point-to-plane "
+            "over the last of two or more --radius values");
+  }
   return a;
 }
 

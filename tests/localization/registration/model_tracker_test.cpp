@@ -128,6 +128,38 @@ TEST(ModelTracker, NicpWithOneLevelTracksToo) {
   EXPECT_LT(e.rotation_deg, 0.02);
 }
 
+// The coarse-to-fine radius in the tracker: 5 iterations on the model's normals, the last
+// 5 on the frame's and the rendered view's refitted over 0.03 m. It must land as well as
+// one radius does, pair the refitted points (the inlier share is of those), and spend 10
+// iterations at most.
+TEST(ModelTracker, NicpOverAFineRadiusTracksToo) {
+  ModelTrackerOptions options;
+  options.scales = {1};
+  options.iterations_per_level = 10;
+  options.fine_radius_m = 0.03F;
+  ModelTracker tracker(PinholeIntrinsics{}, options);
+  std::mt19937 noise(11);
+  maps::range3d::RangeFrameOptions frames;
+  Eigen::Isometry3d model_T_camera = Eigen::Isometry3d::Identity();
+  for (int k = 0; k < 4; ++k) {
+    const auto depth = testing::RenderDepth(testing::OfficeRoom(), PinholeIntrinsics{}, CameraAt(3 * k), 0.002F, noise);
+    SnicpFrame frame;
+    frame.levels.push_back(maps::range3d::FrameFromDepth(depth, frames));
+    const TrackedFrame tracked = tracker.Track(frame, model_T_camera, Eigen::Isometry3d::Identity());
+    ASSERT_TRUE(tracked.merged) << "frame " << k;
+    if (k > 0) {
+      EXPECT_LE(tracked.result.iterations, 10);
+      EXPECT_GT(tracked.inlier_share, 0.5) << "frame " << k;
+    }
+    model_T_camera = tracked.model_T_camera;
+  }
+  const testing::PoseError e = testing::PoseErrorOf(model_T_camera, CameraAt(0).cast<double>().inverse() * CameraAt(9).cast<double>());
+  std::printf("nicp over 0.1 then 0.03 m after 3 steps of 6 cm / 3.4 deg: %.2f mm %.3f deg\n", 1e3 * e.translation_m,
+              e.rotation_deg);
+  EXPECT_LT(e.translation_m, 0.001);
+  EXPECT_LT(e.rotation_deg, 0.02);
+}
+
 // An HDL-32E in the office room, 1080 columns, turning 0.03 rad and moving `step` metres
 // along x a revolution: revolution k's pose and range frame.
 std::pair<Eigen::Isometry3d, maps::range3d::RangeFrame> OfficeRevolution(int k, float step) {

@@ -35,11 +35,15 @@ def build(tracking, out, *extra):
                "--max-frames", str(FRAMES), "--tracking", tracking, "--out", out, "--json", *extra)
 
 
-def ate(out):
+def trajectory_errors(out):
     result = run(EVAL, "traj", "--3d", "--truth", os.path.join(TUM, "groundtruth.txt"),
                  "--est", os.path.join(out, "trajectory.tum"), "--json")
     assert result.returncode == 0, result.stderr
-    return json.loads(result.stdout)["ate_rmse_m"]
+    return json.loads(result.stdout)
+
+
+def ate(out):
+    return trajectory_errors(out)["ate_rmse_m"]
 
 
 def ply_vertices(path):
@@ -62,6 +66,8 @@ class NicpDepthList(unittest.TestCase):
         # Only the accuracy tests read the one-radius chain, and they skip in the quick run.
         cls.frame_one_radius_out = os.path.join(WORK, "fr1_frame_one_radius")
         cls.frame_one_radius = None if QUICK else build("frame", cls.frame_one_radius_out, "--radius", "0.1")
+        cls.model_fine_out = os.path.join(WORK, "fr1_model_fine")
+        cls.model_fine = None if QUICK else build("model", cls.model_fine_out, "--model-fine-radius")
 
     def test_frame_to_model_writes_its_summary_trajectory_and_model(self):
         self.assertEqual(self.model.returncode, 0, self.model.stderr)
@@ -97,6 +103,19 @@ class NicpDepthList(unittest.TestCase):
         self.assertLess(radii_ate, FRAME_RADII_ATE_M)
         self.assertLess(radii_ate, 0.6 * one_ate)
 
+    def test_model_fine_radius_steadies_each_frame(self):
+        """--model-fine-radius: the model tracker's last 5 iterations on normals over 0.03 m.
+        Measured on frames 0-59 at 320 x 240: RPE per frame 9.6 mm against 17.8 mm. Its ATE
+        is no better over these frames (0.059 against 0.045 m; over all 200, 0.040 against
+        0.077 m), so the test holds the per-frame error, where the gain is steady."""
+        if QUICK:
+            self.skipTest("accuracy is judged in the release build")
+        self.assertEqual(self.model_fine.returncode, 0, self.model_fine.stderr)
+        fine = trajectory_errors(self.model_fine_out)["rpe_frame_trans_rmse_m"]
+        one = trajectory_errors(self.model_out)["rpe_frame_trans_rmse_m"]
+        print("RPE per frame over %d frames, frame to model: fine radius %.4f m, one radius %.4f m" % (FRAMES, fine, one))
+        self.assertLess(fine, 0.7 * one)
+
     def test_snicp_at_160x120_tracks_with_merging(self):
         """The real-time configuration: SNICP's pyramid 80x60, 160x120 of every 4th pixel,
         each frame merged. Frames 0-59, measured on 2026-12-07: ATE 0.111 m, no failure,
@@ -119,6 +138,11 @@ class NicpDepthList(unittest.TestCase):
             bad = build("model", os.path.join(WORK, "bad"), flag, value)
             self.assertEqual(bad.returncode, 1, flag + " " + value)
             self.assertIn(flag, bad.stderr + bad.stdout, value)
+        # The model tracker's fine radius needs the model tracker, NICP's normals and a radius to refine to.
+        for tracking, extra in (("frame", ()), ("model", ("--method", "snicp")), ("model", ("--radius", "0.1"))):
+            bad = build(tracking, os.path.join(WORK, "bad"), "--model-fine-radius", *extra)
+            self.assertEqual(bad.returncode, 1, " ".join((tracking,) + extra))
+            self.assertIn("--model-fine-radius", bad.stderr)
         missing = run(MAP, "build", "--mode", "nicp", os.path.join(WORK, "no_such_list.txt"), "--out",
                       os.path.join(WORK, "bad"))
         self.assertEqual(missing.returncode, 2)
