@@ -5,6 +5,7 @@
 #include <optional>
 #include <utility>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -106,10 +107,11 @@ TEST(ModelTracker, AFailedRegistrationLeavesTheModelUntouched) {
   EXPECT_EQ(tracker.model().size(), before);
 }
 
-TEST(ModelTracker, NicpWithOneLevelTracksToo) {
-  ModelTrackerOptions options;
-  options.scales = {1};
-  options.iterations_per_level = 10;
+// NICP at one level, 10 iterations: four office frames 3 poses apart (steps of 6 cm /
+// 3.4 deg) tracked from the identity guess; every frame's result, then the last pose's
+// error (empty when a frame was not merged).
+std::optional<testing::PoseError> TrackOfficeWithNicp(const ModelTrackerOptions& options,
+                                                      std::vector<TrackedFrame>& tracked) {
   ModelTracker tracker(PinholeIntrinsics{}, options);
   std::mt19937 noise(11);
   maps::range3d::RangeFrameOptions frames;
@@ -118,14 +120,27 @@ TEST(ModelTracker, NicpWithOneLevelTracksToo) {
     const auto depth = testing::RenderDepth(testing::OfficeRoom(), PinholeIntrinsics{}, CameraAt(3 * k), 0.002F, noise);
     SnicpFrame frame;
     frame.levels.push_back(maps::range3d::FrameFromDepth(depth, frames));
-    const TrackedFrame tracked = tracker.Track(frame, model_T_camera, Eigen::Isometry3d::Identity());
-    ASSERT_TRUE(tracked.merged) << "frame " << k;
-    model_T_camera = tracked.model_T_camera;
+    tracked.push_back(tracker.Track(frame, model_T_camera, Eigen::Isometry3d::Identity()));
+    if (!tracked.back().merged) return std::nullopt;
+    model_T_camera = tracked.back().model_T_camera;
   }
-  const testing::PoseError e = testing::PoseErrorOf(model_T_camera, CameraAt(0).cast<double>().inverse() * CameraAt(9).cast<double>());
-  std::printf("nicp after 3 steps of 6 cm / 3.4 deg: %.2f mm %.3f deg\n", 1e3 * e.translation_m, e.rotation_deg);
-  EXPECT_LT(e.translation_m, 0.001);
-  EXPECT_LT(e.rotation_deg, 0.02);
+  return testing::PoseErrorOf(model_T_camera, CameraAt(0).cast<double>().inverse() * CameraAt(9).cast<double>());
+}
+
+ModelTrackerOptions NicpOneLevel() {
+  ModelTrackerOptions options;
+  options.scales = {1};
+  options.iterations_per_level = 10;
+  return options;
+}
+
+TEST(ModelTracker, NicpWithOneLevelTracksToo) {
+  std::vector<TrackedFrame> tracked;
+  const auto e = TrackOfficeWithNicp(NicpOneLevel(), tracked);
+  ASSERT_TRUE(e.has_value()) << "frame " << tracked.size() - 1 << " not merged";
+  std::printf("nicp after 3 steps of 6 cm / 3.4 deg: %.2f mm %.3f deg\n", 1e3 * e->translation_m, e->rotation_deg);
+  EXPECT_LT(e->translation_m, 0.001);
+  EXPECT_LT(e->rotation_deg, 0.02);
 }
 
 // The coarse-to-fine radius in the tracker: 5 iterations on the model's normals, the last
@@ -133,31 +148,19 @@ TEST(ModelTracker, NicpWithOneLevelTracksToo) {
 // one radius does, pair the refitted points (the inlier share is of those), and spend 10
 // iterations at most.
 TEST(ModelTracker, NicpOverAFineRadiusTracksToo) {
-  ModelTrackerOptions options;
-  options.scales = {1};
-  options.iterations_per_level = 10;
+  ModelTrackerOptions options = NicpOneLevel();
   options.fine_radius_m = 0.03F;
-  ModelTracker tracker(PinholeIntrinsics{}, options);
-  std::mt19937 noise(11);
-  maps::range3d::RangeFrameOptions frames;
-  Eigen::Isometry3d model_T_camera = Eigen::Isometry3d::Identity();
-  for (int k = 0; k < 4; ++k) {
-    const auto depth = testing::RenderDepth(testing::OfficeRoom(), PinholeIntrinsics{}, CameraAt(3 * k), 0.002F, noise);
-    SnicpFrame frame;
-    frame.levels.push_back(maps::range3d::FrameFromDepth(depth, frames));
-    const TrackedFrame tracked = tracker.Track(frame, model_T_camera, Eigen::Isometry3d::Identity());
-    ASSERT_TRUE(tracked.merged) << "frame " << k;
-    if (k > 0) {
-      EXPECT_LE(tracked.result.iterations, 10);
-      EXPECT_GT(tracked.inlier_share, 0.5) << "frame " << k;
-    }
-    model_T_camera = tracked.model_T_camera;
+  std::vector<TrackedFrame> tracked;
+  const auto e = TrackOfficeWithNicp(options, tracked);
+  ASSERT_TRUE(e.has_value()) << "frame " << tracked.size() - 1 << " not merged";
+  for (std::size_t k = 1; k < tracked.size(); ++k) {
+    EXPECT_LE(tracked[k].result.iterations, 10);
+    EXPECT_GT(tracked[k].inlier_share, 0.5) << "frame " << k;
   }
-  const testing::PoseError e = testing::PoseErrorOf(model_T_camera, CameraAt(0).cast<double>().inverse() * CameraAt(9).cast<double>());
-  std::printf("nicp over 0.1 then 0.03 m after 3 steps of 6 cm / 3.4 deg: %.2f mm %.3f deg\n", 1e3 * e.translation_m,
-              e.rotation_deg);
-  EXPECT_LT(e.translation_m, 0.001);
-  EXPECT_LT(e.rotation_deg, 0.02);
+  std::printf("nicp over 0.1 then 0.03 m after 3 steps of 6 cm / 3.4 deg: %.2f mm %.3f deg\n",
+              1e3 * e->translation_m, e->rotation_deg);
+  EXPECT_LT(e->translation_m, 0.001);
+  EXPECT_LT(e->rotation_deg, 0.02);
 }
 
 // An HDL-32E in the office room, 1080 columns, turning 0.03 rad and moving `step` metres

@@ -82,6 +82,24 @@ TEST(NicpRealData, StaticVlp16SweepsRegisterToIdentity) {
   }
 }
 
+// A pair registered from identity over the frames' own radius, then over `radii` (both
+// frames refitted, so registered last): each result's error against `truth`.
+struct RadiusComparison {
+  testing::PoseError one_radius, coarse_to_fine;
+  int coarse_to_fine_iterations = 0;
+};
+
+RadiusComparison CompareRadii(const RangeFrameOptions& options, const std::vector<float>& radii, RangeFrame& target,
+                              RangeFrame& source, const Eigen::Isometry3d& truth) {
+  const FrameRegistration one =
+      RegisterFrames(target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, NicpOptions{});
+  const FrameRegistration both = RegisterFramesOverRadii(options, radii, target, source, Eigen::Isometry3d::Identity(),
+                                                         RegistrationMethod::kNicp, NicpOptions{});
+  EXPECT_TRUE(one.result.ok() && both.result.ok());
+  return {testing::PoseErrorOf(one.result.target_T_source, truth),
+          testing::PoseErrorOf(both.result.target_T_source, truth), both.result.iterations};
+}
+
 // The LiDAR fine radius (docs/benchmarks.md, "Coarse-to-fine statistics radius"): over R =
 // 0.3 m alone the four pairs of static sweeps end 0.26-0.83 mm from identity; with the
 // last 5 of 10 iterations on normals refitted over 0.05 m, 0.13-0.37 mm.
@@ -94,20 +112,15 @@ TEST(NicpRealData, StaticVlp16SweepsLandNearerWithTheLidarFineRadius) {
   for (std::size_t k = 0; k + 1 < sweeps.size(); ++k) {
     RangeFrame target = LoadOrDie(sweeps[k], options);
     RangeFrame source = LoadOrDie(sweeps[k + 1], options);
-    const FrameRegistration one =
-        RegisterFrames(target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, NicpOptions{});
-    const FrameRegistration both = RegisterFramesOverRadii(
-        options, {options.lidar_statistics.radius_m, kLidarFineRadiusM}, target, source, Eigen::Isometry3d::Identity(),
-        RegistrationMethod::kNicp, NicpOptions{});
-    ASSERT_TRUE(one.result.ok() && both.result.ok());
-    const testing::PoseError e1 = testing::PoseErrorOf(one.result.target_T_source, Eigen::Isometry3d::Identity());
-    const testing::PoseError e2 = testing::PoseErrorOf(both.result.target_T_source, Eigen::Isometry3d::Identity());
+    const RadiusComparison e = CompareRadii(options, {options.lidar_statistics.radius_m, kLidarFineRadiusM}, target,
+                                            source, Eigen::Isometry3d::Identity());
     std::printf("sweeps %zu-%zu: R 0.3 %.3f mm %.4f deg; R 0.3, 0.05 %.3f mm %.4f deg\n", k, k + 1,
-                1e3 * e1.translation_m, e1.rotation_deg, 1e3 * e2.translation_m, e2.rotation_deg);
-    EXPECT_LT(e2.translation_m, 0.0005);
-    EXPECT_LT(e2.rotation_deg, 0.02);
-    one_radius_sum += e1.translation_m;
-    coarse_to_fine_sum += e2.translation_m;
+                1e3 * e.one_radius.translation_m, e.one_radius.rotation_deg, 1e3 * e.coarse_to_fine.translation_m,
+                e.coarse_to_fine.rotation_deg);
+    EXPECT_LT(e.coarse_to_fine.translation_m, 0.0005);
+    EXPECT_LT(e.coarse_to_fine.rotation_deg, 0.02);
+    one_radius_sum += e.one_radius.translation_m;
+    coarse_to_fine_sum += e.coarse_to_fine.translation_m;
   }
   EXPECT_LT(coarse_to_fine_sum, 0.6 * one_radius_sum);  // measured 1.09 against 2.17 mm
 }
@@ -266,22 +279,16 @@ TEST(NicpRealData, TumPairsLandNearerWithCoarseToFineRadii) {
     const Eigen::Isometry3d motion = TruthAt(*truth, (*frames)[k].time_s).inverse() * TruthAt(*truth, (*frames)[k + 1].time_s);
     RangeFrame target = LoadOrDie((*frames)[k].file, options);
     RangeFrame source = LoadOrDie((*frames)[k + 1].file, options);
-    const FrameRegistration one =
-        RegisterFrames(target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, NicpOptions{});
-    const FrameRegistration both = RegisterFramesOverRadii(options, {0.1F, kDepthFineRadiusM}, target, source,
-                                                           Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp,
-                                                           NicpOptions{});
-    ASSERT_TRUE(both.result.ok());
-    EXPECT_LE(both.result.iterations, 10);
+    const RadiusComparison e = CompareRadii(options, {0.1F, kDepthFineRadiusM}, target, source, motion);
+    EXPECT_LE(e.coarse_to_fine_iterations, 10);
     EXPECT_FLOAT_EQ(target.statistics_radius_m, kDepthFineRadiusM);
-    const testing::PoseError e1 = testing::PoseErrorOf(one.result.target_T_source, motion);
-    const testing::PoseError e2 = testing::PoseErrorOf(both.result.target_T_source, motion);
     std::printf("frames %zu-%zu: R 0.1 %.1f mm %.3f deg; R 0.1, 0.03 %.1f mm %.3f deg\n", k, k + 1,
-                1e3 * e1.translation_m, e1.rotation_deg, 1e3 * e2.translation_m, e2.rotation_deg);
-    EXPECT_LT(e2.translation_m, 0.01);
-    EXPECT_LT(e2.rotation_deg, 1.0);
-    one_radius_sum += e1.translation_m;
-    coarse_to_fine_sum += e2.translation_m;
+                1e3 * e.one_radius.translation_m, e.one_radius.rotation_deg, 1e3 * e.coarse_to_fine.translation_m,
+                e.coarse_to_fine.rotation_deg);
+    EXPECT_LT(e.coarse_to_fine.translation_m, 0.01);
+    EXPECT_LT(e.coarse_to_fine.rotation_deg, 1.0);
+    one_radius_sum += e.one_radius.translation_m;
+    coarse_to_fine_sum += e.coarse_to_fine.translation_m;
   }
   EXPECT_LT(coarse_to_fine_sum, 0.5 * one_radius_sum);
 }
