@@ -173,8 +173,8 @@ RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const E
   for (std::size_t level = 0; level < levels; ++level) {
     const bool finest = level + 1 == levels;
     const bool refine = finest && options_.fine_radius_m > 0.0F && scales_[level] == 1 && split.back() > 0;
-    const float radius = (full_view_.pinhole() ? frame.levels[level] : frame.levels.back()).statistics_radius_m;
-    nicp.normal_weight = NormalWeightAt(options_.nicp, radius);
+    const maps::range3d::RangeFrame& level_frame = full_view_.pinhole() ? frame.levels[level] : frame.levels.back();
+    nicp.normal_weight = NormalWeightAt(options_.nicp, level_frame.statistics_radius_m);
     nicp.iterations = refine ? split.front() : options_.iterations_per_level;
     ProjectiveCorrespondenceFinder finder(view_, level_views_[level], &level_images_[level]);
     registered = &SourceAt(frame, level);
@@ -185,7 +185,7 @@ RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const E
     if (!result.ok()) break;
     if (refine) {
       nicp.iterations = split.back();
-      result = RefineOverFineRadius(frame.levels.back(), nicp, result);
+      result = RefineOverFineRadius(level_frame, nicp, result);
       iterations += result.iterations;
       registered = &fine_source_;
     }
