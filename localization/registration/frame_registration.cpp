@@ -39,12 +39,16 @@ ErrorMetric MetricOf(RegistrationMethod method) {
   return method == RegistrationMethod::kPointToPlane ? ErrorMetric::kPointToPlane : ErrorMetric::kNicp;
 }
 
+double NormalWeightAt(const NicpOptions& options, float radius_m) {
+  const double ratio = static_cast<double>(radius_m) / kNormalWeightRadiusM;
+  return options.normal_weight * ratio * ratio;
+}
+
 FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const maps::range3d::RangeFrame& source,
                                  const Eigen::Isometry3d& guess, RegistrationMethod method, NicpOptions options,
                                  CorrespondenceMode mode) {
   options.metric = MetricOf(method);
-  const double radius_ratio = static_cast<double>(target.statistics_radius_m) / kNormalWeightRadiusM;
-  options.normal_weight *= radius_ratio * radius_ratio;
+  options.normal_weight = NormalWeightAt(options, target.statistics_radius_m);
   const auto start = std::chrono::steady_clock::now();
   FrameRegistration registration;
   registration.kdtree = mode == CorrespondenceMode::kKdTree || (mode == CorrespondenceMode::kAuto && !target.organized());

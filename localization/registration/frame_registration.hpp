@@ -26,6 +26,9 @@ enum class CorrespondenceMode { kAuto, kProjective, kKdTree };
 
 // The R that NicpOptions::normal_weight is given for.
 inline constexpr double kNormalWeightRadiusM = 0.1;
+// options.normal_weight for normals fitted over `radius_m`: scaled by (R / 0.1 m)^2
+// (nicp_options.hpp).
+double NormalWeightAt(const NicpOptions& options, float radius_m);
 
 struct FrameRegistration {
   RegistrationResult result;

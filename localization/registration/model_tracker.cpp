@@ -46,19 +46,6 @@ float PointsWithNormals(const maps::range3d::SurfelCloud& cloud) {
   return static_cast<float>(count);
 }
 
-maps::range3d::SurfaceStatisticsOptions FineStatistics(const ModelTrackerOptions& options) {
-  maps::range3d::SurfaceStatisticsOptions statistics = options.fine_statistics;
-  statistics.radius_m = options.fine_radius_m;
-  return statistics;
-}
-
-// The scaling RegisterFrames gives the normal term: its weight is for R = 0.1 m
-// (nicp_options.hpp).
-double NormalWeightAt(const NicpOptions& options, float radius_m) {
-  const double ratio = static_cast<double>(radius_m) / kNormalWeightRadiusM;
-  return options.normal_weight * ratio * ratio;
-}
-
 // `out` takes `points` with every normal undefined until fitted (its buffers kept).
 void ResetTo(const std::vector<Eigen::Vector3f>& points, maps::range3d::SurfelCloud& out) {
   out.points.assign(points.begin(), points.end());
@@ -91,7 +78,7 @@ ModelTracker::ModelTracker(const PinholeIntrinsics& intrinsics, const ModelTrack
     : ModelTracker(RangeProjection::Pinhole(intrinsics), options) {}
 
 ModelTracker::ModelTracker(const RangeProjection& sensor, const ModelTrackerOptions& options)
-    : options_(options), model_(options.model), fine_statistics_(FineStatistics(options)) {
+    : options_(options), model_(options.model), fine_statistics_(options.fine_statistics.value_or(maps::range3d::SurfaceStatisticsOptions{})) {
   if (!sensor.pinhole()) {
     full_view_ = sensor;
     for (const int scale : options.lidar_column_scales) {
@@ -172,7 +159,7 @@ RegistrationResult ModelTracker::RegisterLevels(const SnicpFrame& frame, const E
   const std::vector<int> split = IterationsPerRadius(options_.iterations_per_level, 2);  // coarse, fine
   for (std::size_t level = 0; level < levels; ++level) {
     const bool finest = level + 1 == levels;
-    const bool refine = finest && options_.fine_radius_m > 0.0F && scales_[level] == 1 && split.back() > 0;
+    const bool refine = finest && options_.fine_statistics && scales_[level] == 1 && split.back() > 0;
     const maps::range3d::RangeFrame& level_frame = full_view_.pinhole() ? frame.levels[level] : frame.levels.back();
     nicp.normal_weight = NormalWeightAt(options_.nicp, level_frame.statistics_radius_m);
     nicp.iterations = refine ? split.front() : options_.iterations_per_level;
@@ -202,7 +189,7 @@ RegistrationResult ModelTracker::RefineOverFineRadius(const maps::range3d::Range
   ResetTo(finest.cloud.points, fine_source_);
   fine_statistics_.Compute(finest.projection, finest.image, fine_source_);
   NicpOptions fine = nicp;
-  fine.normal_weight = NormalWeightAt(options_.nicp, options_.fine_radius_m);
+  fine.normal_weight = NormalWeightAt(options_.nicp, options_.fine_statistics->radius_m);
   ProjectiveCorrespondenceFinder finder(fine_view_, level_views_.back(), &level_images_.back());
   return Nicp(fine).Register(fine_view_, finder, fine_source_, coarse.target_T_source);
 }

@@ -20,6 +20,7 @@
 //      by NICP's own tests or when it pairs too small a share of the frame's points.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -40,12 +41,12 @@ struct ModelTrackerOptions {
   // its coarser ones are drawn from it. The thesis' 1/8, 1/4, 1/2 is {8, 4, 2}.
   std::vector<int> lidar_column_scales{1};
   int iterations_per_level = 3;
-  // > 0: coarse-to-fine statistics radius (frame_registration.hpp, RegisterFramesOverRadii)
+  // Set: coarse-to-fine statistics radius (frame_registration.hpp, RegisterFramesOverRadii)
   // at the finest level, when that level is the frame's full resolution: its last
-  // iterations (IterationsPerRadius) pair normals refitted over this R, the frame's and the
-  // rendered view's, with `fine_statistics`' other options. 0: the model's normals throughout.
-  float fine_radius_m = 0.0F;
-  maps::range3d::SurfaceStatisticsOptions fine_statistics;
+  // iterations (IterationsPerRadius) pair normals refitted with these options (its
+  // radius_m the fine R), the frame's and the rendered view's. Empty: the model's normals
+  // throughout.
+  std::optional<maps::range3d::SurfaceStatisticsOptions> fine_statistics;
   // The reference view's extra width and height on each side, as a share of the image's.
   float margin = 0.125F;
   // A registration that pairs fewer than this share of the frame's points with normals is
@@ -92,7 +93,7 @@ class ModelTracker {
   // min_inlier_share is held against).
   RegistrationResult RegisterLevels(const SnicpFrame& frame, const Eigen::Isometry3d& reference_T_guess,
                                     float& finest_points);
-  // The finest level's last iterations on normals refitted over options_.fine_radius_m,
+  // The finest level's last iterations on normals refitted with options_.fine_statistics,
   // from `coarse` (that level's result over the first iterations).
   RegistrationResult RefineOverFineRadius(const maps::range3d::RangeFrame& finest, const NicpOptions& nicp,
                                           const RegistrationResult& coarse);
@@ -110,7 +111,7 @@ class ModelTracker {
   maps::range3d::SurfelCloud view_;  // the rendered model, camera frame
   maps::range3d::IndexImage view_image_;
   // The fine radius' refits (buffers kept from frame to frame): the rendered view's and
-  // the finest level's points with their statistics over options_.fine_radius_m.
+  // the finest level's points with their statistics from options_.fine_statistics.
   maps::range3d::SurfaceStatistics fine_statistics_;
   maps::range3d::SurfelCloud fine_view_;
   maps::range3d::SurfelCloud fine_source_;

@@ -49,8 +49,8 @@ registration::ModelTrackerOptions TrackerOptions(const NicpBuildOptions& options
     tracker.scales = {1};
     tracker.iterations_per_level = options.nicp.iterations;
     if (options.model_fine_radius && options.frame_radii.size() > 1) {
-      tracker.fine_radius_m = options.frame_radii.back();
       tracker.fine_statistics = options.frames.depth_statistics;
+      tracker.fine_statistics->radius_m = options.frame_radii.back();
     }
   }
   return tracker;

@@ -30,7 +30,7 @@ struct NicpBuildOptions {
   // Frame to frame NICP: coarse-to-fine statistics radii (RegisterFramesOverRadii), the
   // first being frames.depth_statistics.radius_m; one entry: that radius alone. The model
   // tracker fits over the first, and with model_fine_radius refines over the last
-  // (ModelTrackerOptions::fine_radius_m): on fr1/rpy that halves the ATE at 160x120 and
+  // (ModelTrackerOptions::fine_statistics): on fr1/rpy that halves the ATE at 160x120 and
   // 320x240 but costs 6 mm of it at 640x480 (docs/benchmarks.md, "The model tracker over
   // a fine radius"), so it is not the default.
   std::vector<float> frame_radii{0.1F, registration::kDepthFineRadiusM};

@@ -149,7 +149,8 @@ TEST(ModelTracker, NicpWithOneLevelTracksToo) {
 // iterations at most.
 TEST(ModelTracker, NicpOverAFineRadiusTracksToo) {
   ModelTrackerOptions options = NicpOneLevel();
-  options.fine_radius_m = 0.03F;
+  options.fine_statistics = maps::range3d::SurfaceStatisticsOptions{};
+  options.fine_statistics->radius_m = 0.03F;
   std::vector<TrackedFrame> tracked;
   const auto e = TrackOfficeWithNicp(options, tracked);
   ASSERT_TRUE(e.has_value()) << "frame " << tracked.size() - 1 << " not merged";
