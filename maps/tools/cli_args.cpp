@@ -93,27 +93,33 @@ std::vector<std::int64_t> ParseIntegerList(std::string_view tool, std::string_vi
   return values;
 }
 
+namespace {
+
+// Levels of a coarse-to-fine schedule (pyramid scales, radii): each smaller than the one
+// before, or Fail(1) naming the flag.
+template <typename Value>
+void RequireCoarseToFine(std::string_view tool, std::string_view flag, const std::vector<Value>& values) {
+  for (std::size_t i = 1; i < values.size(); ++i) {
+    if (values[i] >= values[i - 1]) {
+      Fail(tool, 1, std::string(flag) + ": the levels go coarse to fine, each smaller than the one before");
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<int> ParseCoarseToFine(std::string_view tool, std::string_view flag, const std::string& text, int max) {
   std::vector<int> scales;
-  for (const std::int64_t scale : ParseIntegerList(tool, flag, text, 1, max)) {
-    if (!scales.empty() && scale >= scales.back()) {
-      Fail(tool, 1, std::string(flag) + ": the levels go coarse to fine, each scale smaller than the one before");
-    }
-    scales.push_back(static_cast<int>(scale));
-  }
+  for (const std::int64_t scale : ParseIntegerList(tool, flag, text, 1, max)) scales.push_back(static_cast<int>(scale));
+  RequireCoarseToFine(tool, flag, scales);
   return scales;
 }
 
 std::vector<double> ParseDecreasing(std::string_view tool, std::string_view flag, const std::string& text, double min,
                                     double max) {
   std::vector<double> values;
-  for (const std::string& part : SplitCommas(text)) {
-    const double value = ParseNumberIn(tool, flag, part.c_str(), min, max);
-    if (!values.empty() && value >= values.back()) {
-      Fail(tool, 1, std::string(flag) + ": the values go coarse to fine, each smaller than the one before");
-    }
-    values.push_back(value);
-  }
+  for (const std::string& part : SplitCommas(text)) values.push_back(ParseNumberIn(tool, flag, part.c_str(), min, max));
+  RequireCoarseToFine(tool, flag, values);
   return values;
 }
 
