@@ -14,11 +14,13 @@ if(FLAT2D_SANITIZE)
   add_compile_definitions(EIGEN_STRONG_INLINE=EIGEN_ALWAYS_INLINE)
 endif()
 
-# libFuzzer instrumentation for the library code used by fuzz targets.
+# libFuzzer instrumentation for the library code used by fuzz targets. Debug information
+# comes from the build type, as above (scripts/build fuzz asks for line tables: a crash's
+# stack keeps file and line).
 if(FLAT2D_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
     message(FATAL_ERROR "FLAT2D_FUZZ needs clang (CXX=clang++)")
   endif()
-  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -g)
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined)
   add_link_options(-fsanitize=address,undefined)
 endif()
