@@ -70,7 +70,11 @@ std::optional<GroundPlane> FitGroundPlane(std::span<const Eigen::Vector3f> point
   Eigen::Vector3d best_n = up;
   double best_d = 0.0;
   for (int i = 0; i < options.ransac_iterations; ++i) {
-    const auto plane = PlaneThrough(candidates[pick(random)], candidates[pick(random)], candidates[pick(random)]);
+    // Drawn one by one: as arguments of one call the three draws have no order, and each
+    // compiler would take another sample from the same seed.
+    const std::size_t a = pick(random);
+    const std::size_t b = pick(random);
+    const auto plane = PlaneThrough(candidates[a], candidates[b], candidates[pick(random)]);
     if (!plane || std::abs(plane->first.dot(up)) < min_cos) continue;
     const int inliers = CountInliers(candidates, plane->first, plane->second, options.inlier_distance_m);
     if (inliers > best) {
