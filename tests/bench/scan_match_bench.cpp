@@ -95,8 +95,9 @@ void RunMatches(benchmark::State& state, const MatcherLimits& limits, const Sear
   int recovered = 0;
   for (auto _ : state) {
     for (const Sample& sample : samples) {
-      const Se2 prediction(sample.truth.x() + offset(random), sample.truth.y() + offset(random),
-                           sample.truth.theta() + turn(random));
+      // Braces: the draws are made in order (a call's arguments have none).
+      const Se2 prediction{sample.truth.x() + offset(random), sample.truth.y() + offset(random),
+                           sample.truth.theta() + turn(random)};
       const auto start = std::chrono::steady_clock::now();
       const double cpu_start = ThreadCpuMilliseconds();
       const MatchResult result = relocalize ? matcher.Relocalize(sample.points, prediction, window, relocalization)

@@ -24,6 +24,13 @@ Vec2 Point(double x, double y) {
   return p;
 }
 
+// x drawn before y. As two arguments of one call the draws would have no order, and each
+// compiler would make another scene from the same seed.
+Vec2 RandomPoint(std::uniform_real_distribution<double>& xy, std::mt19937& rng) {
+  const double x = xy(rng);
+  return Point(x, xy(rng));
+}
+
 // 60 x 60 m of every primitive kind at random, seeded.
 SceneDescription RandomClutter(std::uint32_t seed) {
   std::mt19937 rng(seed);
@@ -34,7 +41,7 @@ SceneDescription RandomClutter(std::uint32_t seed) {
   d.mutable_ground()->set_height(0.1);
   for (int i = 0; i < 4; ++i) {
     Ramp* r = d.mutable_ground()->add_ramps();
-    *r->mutable_start() = Point(xy(rng), xy(rng));
+    *r->mutable_start() = RandomPoint(xy, rng);
     r->set_heading(angle(rng));
     r->set_run_m(size(rng) * 2);
     r->set_width_m(size(rng) + 1);
@@ -44,14 +51,14 @@ SceneDescription RandomClutter(std::uint32_t seed) {
   }
   for (int i = 0; i < 40; ++i) {
     Box* b = d.add_boxes();
-    *b->mutable_center() = Point(xy(rng), xy(rng));
+    *b->mutable_center() = RandomPoint(xy, rng);
     b->set_yaw(angle(rng));
     b->set_length_m(size(rng));
     b->set_width_m(size(rng));
     b->set_height_m(size(rng));
     b->set_bottom(i % 5 == 0 ? size(rng) : 0.0);
     Cylinder* c = d.add_cylinders();
-    *c->mutable_center() = Point(xy(rng), xy(rng));
+    *c->mutable_center() = RandomPoint(xy, rng);
     c->set_radius_m(0.1 * size(rng));
     c->set_height_m(2 * size(rng));
   }
@@ -66,23 +73,23 @@ SceneDescription RandomClutter(std::uint32_t seed) {
     }
     p->set_height_m(3 * size(rng));
     Wall* w = d.add_walls();
-    *w->add_points() = Point(xy(rng), xy(rng));
-    *w->add_points() = Point(xy(rng), xy(rng));
-    *w->add_points() = Point(xy(rng), xy(rng));
+    *w->add_points() = RandomPoint(xy, rng);
+    *w->add_points() = RandomPoint(xy, rng);
+    *w->add_points() = RandomPoint(xy, rng);
     w->set_thickness_m(0.2);
     w->set_height_m(2.5);
     Bar* bar = d.add_bars();
-    *bar->mutable_a() = Point(xy(rng), xy(rng));
-    *bar->mutable_b() = Point(xy(rng), xy(rng));
+    *bar->mutable_a() = RandomPoint(xy, rng);
+    *bar->mutable_b() = RandomPoint(xy, rng);
     bar->set_z(1.0);
     bar->set_thickness_m(0.08);
     Curb* curb = d.add_curbs();
-    *curb->add_points() = Point(xy(rng), xy(rng));
-    *curb->add_points() = Point(xy(rng), xy(rng));
+    *curb->add_points() = RandomPoint(xy, rng);
+    *curb->add_points() = RandomPoint(xy, rng);
     curb->set_height_m(0.15);
     curb->set_width_m(0.3);
     Foliage* f = d.add_foliage();
-    *f->mutable_center() = Point(xy(rng), xy(rng));
+    *f->mutable_center() = RandomPoint(xy, rng);
     f->set_radius_m(size(rng));
     f->set_bottom(1.5);
     f->set_top(5);
@@ -113,7 +120,8 @@ std::vector<RandomRay> RandomRays(int count, std::uint32_t seed) {
   for (int i = 0; i < count; ++i) {
     const double a = azimuth(rng);
     const double e = i % 50 == 0 ? -std::numbers::pi / 2 : elevation(rng);  // some vertical
-    rays.push_back({Eigen::Vector3d(xy(rng), xy(rng), z(rng)),
+    // Braces: the draws are made in order (a call's arguments have none).
+    rays.push_back({Eigen::Vector3d{xy(rng), xy(rng), z(rng)},
                     Eigen::Vector3d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a),
                                     std::sin(e))});
   }

@@ -53,8 +53,10 @@ std::vector<Eigen::Isometry3d> SensorTrack(const std::vector<Eigen::Isometry3d>&
   std::normal_distribution<double> millimetres(0.0, 0.003), degrees(0.0, 0.02);
   std::vector<Eigen::Isometry3d> track;
   for (const Eigen::Isometry3d& pose : vehicle) {
-    const Eigen::Isometry3d noise = Pose(millimetres(random), millimetres(random), millimetres(random), degrees(random),
-                                         degrees(random), degrees(random));
+    // Drawn in order first: as arguments of one call the draws would have no order.
+    const double x = millimetres(random), y = millimetres(random), z = millimetres(random);
+    const double roll = degrees(random), pitch = degrees(random), yaw = degrees(random);
+    const Eigen::Isometry3d noise = Pose(x, y, z, roll, pitch, yaw);
     track.push_back(pose * kTruth * noise);
   }
   return track;

@@ -47,10 +47,10 @@ std::vector<StampedPose> Truth(int poses = 600) {
 
 Eigen::Isometry3d RandomMotion(std::mt19937& rng, double max_offset_m) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const Eigen::Vector3d axis = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+  const Eigen::Vector3d axis = Eigen::Vector3d{unit(rng), unit(rng), unit(rng)}.normalized();
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
   motion.linear() = Eigen::AngleAxisd(std::numbers::pi * unit(rng), axis).toRotationMatrix();
-  motion.translation() = max_offset_m * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+  motion.translation() = max_offset_m * Eigen::Vector3d{unit(rng), unit(rng), unit(rng)};
   return motion;
 }
 
@@ -201,7 +201,7 @@ TEST(TrajectoryError3d, PositionNoiseMatchesADirectComputation) {
   std::vector<StampedPose> estimate = truth;
   std::vector<Eigen::Vector3d> n;
   for (StampedPose& p : estimate) {
-    n.emplace_back(noise(rng), noise(rng), noise(rng));
+    n.push_back(Eigen::Vector3d{noise(rng), noise(rng), noise(rng)});  // braces: drawn in order
     p.world_T_body.translation() += n.back();
   }
   std::vector<double> unaligned, frame, delta;

@@ -43,7 +43,8 @@ Synthetic SquareLoops(unsigned seed, double noise) {
   }
   auto add_edge = [&](std::size_t i, std::size_t j) {
     const Se2 exact = s.truth[i].Inverse() * s.truth[j];
-    const Se2 z = exact * Se2(noise * gauss(rng), noise * gauss(rng), 0.1 * noise * gauss(rng));
+    // Braces: the draws are made in order (a call's arguments have none).
+    const Se2 z = exact * Se2{noise * gauss(rng), noise * gauss(rng), 0.1 * noise * gauss(rng)};
     s.graph.betweens.push_back({i, j, z, info, AngleResidual::kWrapped});
   };
   for (std::size_t k = 1; k < s.truth.size(); ++k) add_edge(k - 1, k);
@@ -56,7 +57,7 @@ void PerturbEstimates(PoseGraph& graph, unsigned seed, double sigma) {
   std::normal_distribution<double> gauss(0.0, sigma);
   for (std::size_t n = 1; n < graph.nodes.size(); ++n) {
     graph.nodes[n].estimate = Retract(graph.nodes[n].estimate,
-                                      Eigen::Vector3d(gauss(rng), gauss(rng), 0.2 * gauss(rng)));
+                                      Eigen::Vector3d{gauss(rng), gauss(rng), 0.2 * gauss(rng)});
   }
 }
 

@@ -27,7 +27,8 @@ constexpr double kPi = std::numbers::pi;
 Se2 RandomPose(std::mt19937& rng, double extent) {
   std::uniform_real_distribution<double> position(-extent, extent);
   std::uniform_real_distribution<double> heading(-kPi, kPi);
-  return Se2(position(rng), position(rng), heading(rng));
+  // Braces: the draws are made in order (a call's arguments have none).
+  return Se2{position(rng), position(rng), heading(rng)};
 }
 
 // d error / d delta by central differences; the angle row is wrapped so a jump over +-pi

@@ -18,7 +18,8 @@ namespace flat2d::localization::graph::synthetic {
 inline Eigen::Matrix3d RandomRotation(std::mt19937& rng, double max_angle) {
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::uniform_real_distribution<double> angle(0.0, max_angle);
-  const Eigen::Vector3d axis = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+  // Braces: the draws are made in order (a call's arguments have none).
+  const Eigen::Vector3d axis = Eigen::Vector3d{gauss(rng), gauss(rng), gauss(rng)}.normalized();
   return ExpSo3(angle(rng) * axis);
 }
 
@@ -26,7 +27,7 @@ inline Eigen::Isometry3d RandomPose(std::mt19937& rng, double extent, double max
   std::uniform_real_distribution<double> position(-extent, extent);
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = RandomRotation(rng, max_angle);
-  pose.translation() = Eigen::Vector3d(position(rng), position(rng), position(rng));
+  pose.translation() = Eigen::Vector3d{position(rng), position(rng), position(rng)};
   return pose;
 }
 

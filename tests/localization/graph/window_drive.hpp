@@ -86,9 +86,10 @@ inline std::vector<DriveStep> MakeDrive(const DriveOptions& o) {
       step.has_match = true;
       ++matches;
       step.outlier = o.outlier_every > 0 && matches % o.outlier_every == 0;
+      // Braces: the draws are made in order (a call's arguments have none).
       step.match = step.outlier
-                       ? Se2(truth.x() + 2.0 + 8.0 * std::abs(gross(rng)), truth.y() + 5.0 * gross(rng),
-                             truth.theta() + 0.5 * gross(rng))
+                       ? Se2{truth.x() + 2.0 + 8.0 * std::abs(gross(rng)), truth.y() + 5.0 * gross(rng),
+                             truth.theta() + 0.5 * gross(rng)}
                        : AddNoise(truth, o.match_sigma_xy, o.match_sigma_theta, rng);
     }
   }

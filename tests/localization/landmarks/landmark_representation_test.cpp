@@ -28,7 +28,8 @@ Plane PlaneCase(std::mt19937& rng, int i) {
   switch (i % 4) {
     case 1: return Plane{Eigen::Vector3d(0.0, 0.0, up), offset(rng)};
     case 2: return Plane{RandomUnit(rng), 0.0};
-    case 3: return Plane{Eigen::Vector3d(1e-9 * offset(rng), 1e-9 * offset(rng), up).normalized(), offset(rng)};
+    // Braces: the draws are made in order (a call's arguments have none).
+    case 3: return Plane{Eigen::Vector3d{1e-9 * offset(rng), 1e-9 * offset(rng), up}.normalized(), offset(rng)};
     default: return Plane{RandomUnit(rng), offset(rng)};
   }
 }

@@ -120,7 +120,8 @@ PointRun RunPointSlam(const testing::Drive& drive, const std::vector<Eigen::Vect
     std::vector<Eigen::Vector3d> keypoints;
     for (const Eigen::Vector3d& p : world) {
       const Eigen::Vector3d seen = sensor_T_world * p;
-      if (seen.norm() <= 20.0) keypoints.push_back(seen + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+      // Braces: the draws are made in order (a call's arguments have none).
+      if (seen.norm() <= 20.0) keypoints.push_back(seen + Eigen::Vector3d{noise(rng), noise(rng), noise(rng)});
     }
     keypoints.push_back(RandomVector(rng, 15.0));
     slam.Add(static_cast<TimeNs>(k) * 100 * kNsPerMs, r.odometry_world_T_vehicle, no_features, keypoints);

@@ -18,13 +18,14 @@ inline double TranslationScale(int i) { return i % 3 == 0 ? 1e3 : 10.0; }
 
 inline Eigen::Vector3d RandomVector(std::mt19937& rng, double scale) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  return scale * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+  // Braces: the draws are made in order (a call's arguments have none).
+  return scale * Eigen::Vector3d{unit(rng), unit(rng), unit(rng)};
 }
 
 inline Eigen::Vector3d RandomUnit(std::mt19937& rng) {
   std::normal_distribution<double> gauss(0.0, 1.0);
-  Eigen::Vector3d v(gauss(rng), gauss(rng), gauss(rng));
-  while (v.norm() < 1e-3) v = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+  Eigen::Vector3d v{gauss(rng), gauss(rng), gauss(rng)};
+  while (v.norm() < 1e-3) v = Eigen::Vector3d{gauss(rng), gauss(rng), gauss(rng)};
   return v.normalized();
 }
 
@@ -39,7 +40,7 @@ inline Eigen::Vector3d RandomOrthogonal(std::mt19937& rng, const Eigen::Vector3d
 // of half-side `translation_scale`.
 inline Eigen::Isometry3d RandomPose(std::mt19937& rng, double translation_scale) {
   std::normal_distribution<double> gauss(0.0, 1.0);
-  Eigen::Quaterniond q(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
+  Eigen::Quaterniond q{gauss(rng), gauss(rng), gauss(rng), gauss(rng)};
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = q.normalized().toRotationMatrix();
   pose.translation() = RandomVector(rng, translation_scale);

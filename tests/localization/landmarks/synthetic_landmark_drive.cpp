@@ -98,7 +98,8 @@ void AddClutter(const Eigen::Isometry3d& world_T_sensor, int count, std::mt19937
                 maps::features3d::FeatureSet& features) {
   std::uniform_real_distribution<double> angle(-kPi, kPi), distance(3.0, 15.0);
   for (int i = 0; i < count; ++i) {
-    const Eigen::Vector2d xy = world_T_sensor.translation().head<2>() + Polar(distance(rng), angle(rng));
+    const double range = distance(rng);  // drawn before the bearing: a call's arguments have no order
+    const Eigen::Vector2d xy = world_T_sensor.translation().head<2>() + Polar(range, angle(rng));
     const Eigen::Vector3d center(xy.x(), xy.y(), 1.5);
     const double heading = angle(rng);
     Eigen::Vector3d normal(std::cos(heading), std::sin(heading), 0.0);

@@ -37,9 +37,10 @@ Matrix6d Information(double sigma_m, double sigma_rad) {
 Eigen::Isometry3d Noisy(const Eigen::Isometry3d& pose, double sigma_m, double sigma_rad, std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
   Eigen::Isometry3d noisy = pose;
-  noisy.translation() += sigma_m * Eigen::Vector3d(n(rng), n(rng), n(rng));
-  noisy.linear() = noisy.linear() * Eigen::AngleAxisd(sigma_rad * n(rng), Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized())
-                                        .toRotationMatrix();
+  // Braces: the draws are made in order (a call's arguments have none).
+  noisy.translation() += sigma_m * Eigen::Vector3d{n(rng), n(rng), n(rng)};
+  const Eigen::AngleAxisd turn{sigma_rad * n(rng), Eigen::Vector3d{n(rng), n(rng), n(rng)}.normalized()};
+  noisy.linear() = noisy.linear() * turn.toRotationMatrix();
   return noisy;
 }
 

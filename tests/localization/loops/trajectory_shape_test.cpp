@@ -40,7 +40,8 @@ Eigen::Isometry3d RandomTransform(std::mt19937& random, double max_offset_m) {
   t.linear() = (Eigen::AngleAxisd(angle(random), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(tilt(random), Eigen::Vector3d::UnitY()) *
                 Eigen::AngleAxisd(tilt(random), Eigen::Vector3d::UnitX()))
                    .toRotationMatrix();
-  t.translation() = Eigen::Vector3d(offset(random), offset(random), 0.1 * offset(random));
+  // Braces: the draws are made in order (a call's arguments have none).
+  t.translation() = Eigen::Vector3d{offset(random), offset(random), 0.1 * offset(random)};
   return t;
 }
 
@@ -83,7 +84,7 @@ TEST(TrajectoryShape, RecoversTheTransformBetweenTwoPassesOfOnePath) {
     const std::vector<double> arcs = ArcLengths(reference);
     for (double s = start; s < 58.0; s += 0.5) {
       Eigen::Isometry3d pose = reference_T_current.inverse() * PoseAlongPath(reference, arcs, s);
-      pose.translation() += Eigen::Vector3d(noise(random), noise(random), noise(random));
+      pose.translation() += Eigen::Vector3d{noise(random), noise(random), noise(random)};
       current.push_back(pose);
     }
     // The association: the current pose about 30 m along with the reference pose at 30.4 m,

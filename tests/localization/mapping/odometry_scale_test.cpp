@@ -17,7 +17,8 @@ TEST(OdometryScaleEstimate, IsTheRatioOfMatchedToOdometryDistanceAlongThePath) {
   std::normal_distribution<double> noise(0.0, 0.01);
   for (int i = 0; i < 400; ++i) {
     const Se2 odometry(0.5, 0.02, 0.01);  // half a metre, a little sideways
-    const Se2 matched(0.5 * 0.994 + noise(random), 0.02 * 0.994 + noise(random), 0.01);
+    // Braces: the draws are made in order (a call's arguments have none).
+    const Se2 matched{0.5 * 0.994 + noise(random), 0.02 * 0.994 + noise(random), 0.01};
     EXPECT_TRUE(estimate.Add(odometry, matched, kSure));
   }
   EXPECT_TRUE(estimate.ready());

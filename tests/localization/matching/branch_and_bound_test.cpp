@@ -43,8 +43,9 @@ void ExpectSameAsExhaustive(const Case& c, std::uint32_t seed, int trials, bool 
     if (random_scan) {
       for (Eigen::Vector2d& p : scan) p = {scatter(random), scatter(random)};
     }
-    const Se2 prediction(truth.x() + offset(random), truth.y() + offset(random),
-                         truth.theta() + 10.0 * offset(random) * kDeg);
+    // Braces: the draws are made in order (a call's arguments have none).
+    const Se2 prediction{truth.x() + offset(random), truth.y() + offset(random),
+                         truth.theta() + 10.0 * offset(random) * kDeg};
     const MatchResult fast = matcher.Match(scan, prediction, c.window);
     const MatchResult slow = matcher.MatchExhaustive(scan, prediction, c.window);
     ASSERT_EQ(fast.status, slow.status) << "seed " << seed << " trial " << trial;

@@ -26,7 +26,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 Se2 Perturb(const Se2& truth, double linear, double angular, std::mt19937& random) {
   std::uniform_real_distribution<double> offset(-linear, linear);
   std::uniform_real_distribution<double> turn(-angular, angular);
-  return Se2(truth.x() + offset(random), truth.y() + offset(random), truth.theta() + turn(random));
+  // Braces: the draws are made in order (a call's arguments have none).
+  return Se2{truth.x() + offset(random), truth.y() + offset(random), truth.theta() + turn(random)};
 }
 
 struct Errors {

@@ -92,8 +92,9 @@ Tally MatchPairs(const std::vector<LaserScan>& scans, std::size_t max_gap, std::
     if (!matcher.SetMap(MapOf(scans[a], points_a)).ok()) continue;
     ++tally.pairs;
     const Se2 truth = PoseOf(scans[b]);
-    const Se2 prediction(truth.x() + offset(random), truth.y() + offset(random),
-                         truth.theta() + turn(random));
+    // Braces: the draws are made in order (a call's arguments have none).
+    const Se2 prediction{truth.x() + offset(random), truth.y() + offset(random),
+                         truth.theta() + turn(random)};
     const MatchResult result = matcher.Match(points_b.points(), prediction, {0.55, 5.5 * kDeg});
     if (!result.ok()) continue;
     ++tally.matched;

@@ -80,7 +80,10 @@ TEST(ScorePyramidTest, EveryLevelBoundsItsBlockExactly) {
   MatchGrid grid(Geometry(37, 23));
   std::uniform_int_distribution<int> x(0, 36);
   std::uniform_int_distribution<int> y(0, 22);
-  for (int i = 0; i < 12; ++i) grid.SetOccupied(x(random), y(random));
+  for (int i = 0; i < 12; ++i) {
+    const int column = x(random);  // drawn before the row: a call's arguments have no order
+    grid.SetOccupied(column, y(random));
+  }
   ScoreTable table(37 * 23);
   ASSERT_TRUE(table.Rebuild(grid).ok());
   ScorePyramid pyramid(37 * 23, 6);

@@ -97,19 +97,21 @@ World OutdoorWorld(double size, std::uint32_t seed) {
   World world;
   world.AddBox({0.0, 0.0}, {size, size});  // the block's boundary walls and fences
   for (int i = 0; i < 25; ++i) {  // buildings
-    world.AddBox({corner(random), corner(random)}, {building(random), building(random)});
+    // Braces and the corner first: the draws are made in order (a call's arguments have none).
+    const Eigen::Vector2d at{corner(random), corner(random)};
+    world.AddBox(at, {building(random), building(random)});
   }
   std::uniform_real_distribution<double> fence(5.0, 30.0);
   std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
   for (int i = 0; i < 20; ++i) {  // fences and kerbs
-    const Eigen::Vector2d a(along(random), along(random));
+    const Eigen::Vector2d a{along(random), along(random)};
     const double heading = angle(random);
     const Eigen::Vector2d b =
         a + fence(random) * Eigen::Vector2d(std::cos(heading), std::sin(heading));
     world.AddWall(a, b.cwiseMax(0.0).cwiseMin(size));
   }
   for (int i = 0; i < 300; ++i) {  // poles, trunks, posts
-    const Eigen::Vector2d pole(along(random), along(random));
+    const Eigen::Vector2d pole{along(random), along(random)};
     world.AddBox(pole.cwiseMin(size - 0.3), {0.3, 0.3});
   }
   return world;
@@ -162,7 +164,7 @@ Se2 RandomFreePose(const World& world, double clearance, std::mt19937& random) {
   std::uniform_real_distribution<double> y(world.min.y(), world.max.y());
   std::uniform_real_distribution<double> theta(-std::numbers::pi, std::numbers::pi);
   while (true) {
-    const Eigen::Vector2d p(x(random), y(random));
+    const Eigen::Vector2d p{x(random), y(random)};
     if (world.Clearance(p) >= clearance) return Se2(p, theta(random));
   }
 }

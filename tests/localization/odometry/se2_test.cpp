@@ -16,7 +16,8 @@ constexpr unsigned kSeed = 42;
 Se2 RandomPose(std::mt19937& rng, double extent = 100.0) {
   std::uniform_real_distribution<double> position(-extent, extent);
   std::uniform_real_distribution<double> angle(-kPi, kPi);
-  return Se2(position(rng), position(rng), angle(rng));
+  // Braces: the draws are made in order (a call's arguments have none).
+  return Se2{position(rng), position(rng), angle(rng)};
 }
 
 // Numeric Jacobian of f: (x, y, theta) -> (x, y, theta), central differences, angles wrapped.
@@ -75,7 +76,7 @@ TEST(Se2, ExpLogRoundTripIncludingSmallAndNearPiAngles) {
   std::mt19937 rng(kSeed);
   std::uniform_real_distribution<double> rho(-20.0, 20.0);
   for (double phi : {0.0, 1e-12, -3e-9, 1e-5, 9.99e-3, 1.01e-2, 0.5, -2.0, 3.1, kPi - 1e-9, kPi}) {
-    const Eigen::Vector3d xi(rho(rng), rho(rng), phi);
+    const Eigen::Vector3d xi{rho(rng), rho(rng), phi};
     const Eigen::Vector3d back = Se2::Exp(xi).Log();
     EXPECT_NEAR((back - xi).norm(), 0.0, 1e-9 * (1.0 + xi.norm())) << "phi " << phi;
   }

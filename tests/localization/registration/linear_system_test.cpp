@@ -51,8 +51,9 @@ SurfelCloud RandomCloud(std::mt19937& rng, std::size_t n) {
   SurfelCloud cloud;
   cloud.Resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    cloud.points[i] = 3.0F * Eigen::Vector3f(unit(rng), unit(rng), unit(rng));
-    cloud.normals[i] = Eigen::Vector3f(unit(rng), unit(rng), unit(rng)).normalized();
+    // Braces: the draws are made in order (a call's arguments have none).
+    cloud.points[i] = 3.0F * Eigen::Vector3f{unit(rng), unit(rng), unit(rng)};
+    cloud.normals[i] = Eigen::Vector3f{unit(rng), unit(rng), unit(rng)}.normalized();
     cloud.disc_gain[i] = i % 3 == 0 ? 0.0F : 999.0F;
   }
   return cloud;

@@ -36,10 +36,11 @@ Eigen::Isometry3f CameraPose() {
 
 Eigen::Isometry3f RandomMotion(std::mt19937& rng, float max_angle_rad, float max_translation_m) {
   std::uniform_real_distribution<float> unit(-1.0F, 1.0F);
-  const Eigen::Vector3f axis = Eigen::Vector3f(unit(rng), unit(rng), unit(rng)).normalized();
+  // Braces: the draws are made in order (a call's arguments have none).
+  const Eigen::Vector3f axis = Eigen::Vector3f{unit(rng), unit(rng), unit(rng)}.normalized();
   Eigen::Isometry3f motion = Eigen::Isometry3f::Identity();
   motion.linear() = Eigen::AngleAxisf(max_angle_rad * std::abs(unit(rng)), axis).toRotationMatrix();
-  motion.translation() = max_translation_m * Eigen::Vector3f(unit(rng), unit(rng), unit(rng));
+  motion.translation() = max_translation_m * Eigen::Vector3f{unit(rng), unit(rng), unit(rng)};
   return motion;
 }
 

@@ -37,8 +37,9 @@ std::vector<Eigen::Vector3f> PoleSide(const Eigen::Vector2f& axis, float radius,
   std::vector<Eigen::Vector3f> points;
   for (int k = 0; k < count; ++k) {
     const float a = towards + angle(rng);
-    points.emplace_back(axis.x() + (radius + noise(rng)) * std::cos(a), axis.y() + (radius + noise(rng)) * std::sin(a),
-                        height(rng));
+    // Braces: x, y and z drawn in order (a call's arguments have no order).
+    points.push_back(Eigen::Vector3f{axis.x() + (radius + noise(rng)) * std::cos(a),
+                                     axis.y() + (radius + noise(rng)) * std::sin(a), height(rng)});
   }
   return points;
 }
@@ -48,7 +49,7 @@ std::vector<Eigen::Vector3f> Wall(float x0, float y0, float width, int count, st
   std::uniform_real_distribution<float> along(0.0F, width), height(-1.5F, 1.5F);
   std::normal_distribution<float> noise(0.0F, 0.01F);
   std::vector<Eigen::Vector3f> points;
-  for (int k = 0; k < count; ++k) points.emplace_back(x0 + noise(rng), y0 + along(rng), height(rng));
+  for (int k = 0; k < count; ++k) points.push_back(Eigen::Vector3f{x0 + noise(rng), y0 + along(rng), height(rng)});
   return points;
 }
 
@@ -57,7 +58,7 @@ TEST(FeatureFit, PolesAreLinesNearTheirAxes) {
   std::mt19937 rng(seed);
   for (int trial = 0; trial < 20; ++trial) {
     std::uniform_real_distribution<float> place(-15.0F, 15.0F), radius(0.05F, 0.3F);
-    const Eigen::Vector2f axis(place(rng), place(rng));
+    const Eigen::Vector2f axis{place(rng), place(rng)};
     if (axis.norm() < 3.0F) continue;
     const float r = radius(rng);
     const auto points = PoleSide(axis, r, 200, rng);
@@ -81,7 +82,7 @@ TEST(FeatureFit, ThickPolesAreLocatedByTheirAxis) {
   axis_options.set_line_axis_min_radius_m(0.1);
   for (int trial = 0; trial < 20; ++trial) {
     std::uniform_real_distribution<float> place(-15.0F, 15.0F);
-    const Eigen::Vector2f axis(place(rng), place(rng));
+    const Eigen::Vector2f axis{place(rng), place(rng)};
     if (axis.norm() < 3.0F) continue;
     for (const float r : {0.2F, 0.3F}) {
       const auto points = PoleSide(axis, r, 300, rng);
@@ -141,7 +142,7 @@ TEST(FeatureFit, LowFacesAreNoPlanesWhenPlanesMustBeTall) {
   std::uniform_real_distribution<float> along(0.0F, 1.6F), height(-1.9F, -1.15F);
   std::normal_distribution<float> noise(0.0F, 0.01F);
   std::vector<Eigen::Vector3f> desk;
-  for (int k = 0; k < 300; ++k) desk.emplace_back(5.0F + noise(rng), along(rng), height(rng));
+  for (int k = 0; k < 300; ++k) desk.push_back(Eigen::Vector3f{5.0F + noise(rng), along(rng), height(rng)});
   FittingOptions tall = Options();
   tall.set_min_plane_height_m(0.9);
   EXPECT_TRUE(std::holds_alternative<PlaneFeature>(FitFeature(desk, All(desk.size()), Options())));
@@ -155,7 +156,7 @@ TEST(FeatureFit, BlobsAndTinyClustersAreNeither) {
   std::mt19937 rng(5);
   std::normal_distribution<float> spread(0.0F, 0.5F);
   std::vector<Eigen::Vector3f> blob;
-  for (int k = 0; k < 300; ++k) blob.emplace_back(5.0F + spread(rng), spread(rng), spread(rng));
+  for (int k = 0; k < 300; ++k) blob.push_back(Eigen::Vector3f{5.0F + spread(rng), spread(rng), spread(rng)});
   EXPECT_TRUE(std::holds_alternative<std::monostate>(FitFeature(blob, All(blob.size()), Options())));
   const std::vector<Eigen::Vector3f> two{{1, 0, 0}, {1, 0, 1}};
   EXPECT_TRUE(std::holds_alternative<std::monostate>(FitFeature(two, All(two.size()), Options())));

@@ -33,7 +33,7 @@ TEST(ClassGrid, MarkLineCoversTheSegmentAndNothingElse) {
   std::uniform_real_distribution<double> x(-4.9, 4.9), y(-3.9, 3.9);
   for (int trial = 0; trial < 100; ++trial) {
     ClassGrid grid(Geometry());
-    const Eigen::Vector2d a(x(rng), y(rng)), b(x(rng), y(rng));
+    const Eigen::Vector2d a{x(rng), y(rng)}, b{x(rng), y(rng)};  // braces: drawn in order
     grid.MarkLine(a, b, CellClass::kHazard);
     EXPECT_EQ(grid.at(*grid.geometry().CellOf(a)), CellClass::kHazard);
     EXPECT_EQ(grid.at(*grid.geometry().CellOf(b)), CellClass::kHazard);

@@ -95,7 +95,9 @@ void ExpectBatchEqualsOneAtATime(const RangeProjection& projection) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> coordinate(-60.0F, 60.0F);
   std::vector<Eigen::Vector3f> points;
-  for (int k = 0; k < 3000; ++k) points.emplace_back(coordinate(rng), coordinate(rng), 0.2F * coordinate(rng));
+  for (int k = 0; k < 3000; ++k) {  // braces: x, y and z drawn in order
+    points.push_back(Eigen::Vector3f{coordinate(rng), coordinate(rng), 0.2F * coordinate(rng)});
+  }
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (const Eigen::Vector3f& p : {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(5, 0, 0), Eigen::Vector3f(-5, 0, 0),
                                   Eigen::Vector3f(0, 5, 0), Eigen::Vector3f(0, -5, 0), Eigen::Vector3f(-5, -0.0F, 0.1F),

@@ -119,9 +119,10 @@ TEST(SurfaceStatistics, SmallestEigenvectorMatchesTheIterativeSolver) {
   cloud.Resize(1);
   int checked = 0;
   for (int trial = 0; trial < 2000; ++trial) {
+    // Braces: the draws are made in order (a call's arguments have none).
     const Eigen::Matrix3d rotation =
-        Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized()).toRotationMatrix();
-    Eigen::Vector3d lambda(std::pow(10.0, exponent(rng)), std::pow(10.0, exponent(rng)), 1.0);
+        Eigen::Quaterniond(Eigen::Vector4d{unit(rng), unit(rng), unit(rng), unit(rng)}.normalized()).toRotationMatrix();
+    Eigen::Vector3d lambda{std::pow(10.0, exponent(rng)), std::pow(10.0, exponent(rng)), 1.0};
     if (trial % 4 == 0) lambda.y() = lambda.x() * (1.0 + 1e-3 * std::abs(unit(rng)));  // nearly repeated
     const double scale = 1e-4 * std::pow(10.0, 3.0 * std::abs(unit(rng)));  // (1 cm .. 30 cm)^2
     const Eigen::Matrix3d covariance = scale * rotation * lambda.asDiagonal() * rotation.transpose();
@@ -156,8 +157,9 @@ TEST(SurfaceStatistics, LineDirectionOnlyWhereTheNeighbourhoodIsALine) {
   cloud.line_directions.assign(1, Eigen::Vector3f::Zero());
   int lines = 0, others = 0;
   for (int trial = 0; trial < 2000; ++trial) {
+    // Braces: the draws are made in order (a call's arguments have none).
     const Eigen::Matrix3d rotation =
-        Eigen::Quaterniond(Eigen::Vector4d(unit(rng), unit(rng), unit(rng), unit(rng)).normalized()).toRotationMatrix();
+        Eigen::Quaterniond(Eigen::Vector4d{unit(rng), unit(rng), unit(rng), unit(rng)}.normalized()).toRotationMatrix();
     // Middle eigenvalue from 1e-4 to 0.5 of the largest: lines and planes.
     const double middle = std::pow(10.0, -4.0 + 3.7 * 0.5 * (1.0 + unit(rng)));
     const Eigen::Vector3d lambda(middle * 0.5 * (1.0 + unit(rng)), middle, 1.0);
