@@ -14,6 +14,7 @@ inline constexpr TimeNs kNsPerUs = 1'000;
 inline constexpr TimeNs kNsPerMs = 1'000'000;
 inline constexpr TimeNs kNsPerSecond = 1'000'000'000;
 inline constexpr TimeNs kNsPerHour = 3600 * kNsPerSecond;
+inline constexpr TimeNs kNsPerDay = 24 * kNsPerHour;
 inline constexpr double kSecondsPerNs = 1e-9;
 // Velodyne's top-of-hour timestamps count microseconds in a uint32 (3.6e9 fits).
 inline constexpr std::uint32_t kUsPerHour = static_cast<std::uint32_t>(kNsPerHour / kNsPerUs);

@@ -104,7 +104,7 @@ Result<TimeNs> ParseDate(std::string_view text) {
   if (month < 1 || month > 12 || day < 1 || day > DaysInMonth(year, month)) {
     return FieldError("date", text, "no such day");
   }
-  return DaysFromCivil(year, month, day) * 24 * kNsPerHour;
+  return DaysFromCivil(year, month, day) * kNsPerDay;
 }
 
 // ddmm.mmmm (latitude) or dddmm.mmmm (longitude) plus hemisphere -> signed degrees. The

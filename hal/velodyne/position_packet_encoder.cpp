@@ -10,7 +10,6 @@
 namespace flat2d::hal::velodyne {
 namespace {
 
-constexpr TimeNs kNsPerDay = 24 * kNsPerHour;
 constexpr double kMpsToKnots = 3600.0 / 1852.0;  // 1 knot = 1852 m per hour
 constexpr double kMaxKnots = 99999.0;            // bounds the sentence length
 

@@ -7,8 +7,6 @@
 namespace flat2d::hal::velodyne {
 namespace {
 
-constexpr TimeNs kNsPerDay = 24 * kNsPerHour;
-
 // Days since 1970-01-01 counted the slow way, independent of the parser's closed form.
 std::int64_t NaiveDaysSinceEpoch(int year, int month, int day) {
   const auto leap = [](int y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; };

@@ -156,8 +156,6 @@ std::vector<std::vector<std::uint8_t>> PayloadsOfSize(const std::filesystem::pat
   return payloads;
 }
 
-constexpr TimeNs kNsPerDay = 24 * kNsPerHour;
-
 TEST(PositionPacket, FirstPacketOfTheMrptVlp16CaptureHasAFixOf2016_01_21) {
   FLAT2D_REQUIRE_DATA(pcap, "velodyne/vlp16/mrpt_sample_velodyne_vlp16_gps.pcap");
   const auto payloads = PayloadsOfSize(pcap, 512);
