@@ -33,7 +33,7 @@ std::string Dims(int width, int height, int points) {
          std::to_string(points) + "\n";
 }
 
-std::string ErrorOf(const std::string& bytes) {
+std::string PcdErrorOf(const std::string& bytes) {
   const Result<PointCloud> cloud = ParsePcd(bytes, "x.pcd");
   return cloud.ok() ? std::string("(no error)") : cloud.error().message;
 }
@@ -117,37 +117,37 @@ TEST(PcdFile, OldHeadersAreUnorganizedClouds) {
 }
 
 TEST(PcdFile, HeaderErrorsNameTheLineAndField) {
-  EXPECT_EQ(ErrorOf(Header("x y z intensity", "4 4 4", "F F F F", Dims(1, 1, 1), "ascii")),
+  EXPECT_EQ(PcdErrorOf(Header("x y z intensity", "4 4 4", "F F F F", Dims(1, 1, 1), "ascii")),
             "x.pcd: header line 4 (SIZE): 3 entries for 4 FIELDS");
-  EXPECT_EQ(ErrorOf(Header("y z", "4 4", "F F", Dims(1, 1, 1), "ascii") + "1 2\n"), "x.pcd: FIELDS has no x");
-  EXPECT_EQ(ErrorOf(Header("x y z", "4 4 4", "F F Q", Dims(1, 1, 1), "ascii")),
+  EXPECT_EQ(PcdErrorOf(Header("y z", "4 4", "F F", Dims(1, 1, 1), "ascii") + "1 2\n"), "x.pcd: FIELDS has no x");
+  EXPECT_EQ(PcdErrorOf(Header("x y z", "4 4 4", "F F Q", Dims(1, 1, 1), "ascii")),
             "x.pcd: header line 5 (TYPE): field z: unknown type 'Q'");
-  EXPECT_EQ(ErrorOf(Header("x y z", "2 4 4", "F F F", Dims(1, 1, 1), "ascii")),
+  EXPECT_EQ(PcdErrorOf(Header("x y z", "2 4 4", "F F F", Dims(1, 1, 1), "ascii")),
             "x.pcd: header line 5 (TYPE): field x: F with SIZE 2 is no numeric type");
-  EXPECT_EQ(ErrorOf(Header("x y z", "4 4 4", "U F F", Dims(1, 1, 1), "ascii")),
+  EXPECT_EQ(PcdErrorOf(Header("x y z", "4 4 4", "U F F", Dims(1, 1, 1), "ascii")),
             "x.pcd: field x: expected TYPE F (SIZE 4 or 8)");
-  EXPECT_EQ(ErrorOf(Header("x y z ring", "4 4 4 4", "F F F F", Dims(1, 1, 1), "ascii")),
+  EXPECT_EQ(PcdErrorOf(Header("x y z ring", "4 4 4 4", "F F F F", Dims(1, 1, 1), "ascii")),
             "x.pcd: field ring: TYPE F, expected an integer type (I or U)");
-  EXPECT_EQ(ErrorOf(Header("x y z", "4 4 4", "F F F", Dims(2, 2, 5), "ascii")),
+  EXPECT_EQ(PcdErrorOf(Header("x y z", "4 4 4", "F F F", Dims(2, 2, 5), "ascii")),
             "x.pcd: header line 8 (POINTS): 5 points, but WIDTH 2 x HEIGHT 2 = 4");
-  EXPECT_EQ(ErrorOf(Header("x y z", "4 4 4", "F F F", Dims(1, 1, 1), "binary_zstd")),
+  EXPECT_EQ(PcdErrorOf(Header("x y z", "4 4 4", "F F F", Dims(1, 1, 1), "binary_zstd")),
             "x.pcd: header line 10 (DATA): unknown data kind 'binary_zstd'");
-  EXPECT_EQ(ErrorOf("VERSION 0.7\nFIELDS x y z\nSIZES 4 4 4\n"), "x.pcd: header line 3 (SIZES): unknown keyword");
-  EXPECT_EQ(ErrorOf("VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\n"), "x.pcd: header: no DATA line");
-  EXPECT_EQ(ErrorOf("VERSION 0.7\nFIELDS x y z\nTYPE F F F\nPOINTS 1\nDATA ascii\n"), "x.pcd: header: no SIZE line");
+  EXPECT_EQ(PcdErrorOf("VERSION 0.7\nFIELDS x y z\nSIZES 4 4 4\n"), "x.pcd: header line 3 (SIZES): unknown keyword");
+  EXPECT_EQ(PcdErrorOf("VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\n"), "x.pcd: header: no DATA line");
+  EXPECT_EQ(PcdErrorOf("VERSION 0.7\nFIELDS x y z\nTYPE F F F\nPOINTS 1\nDATA ascii\n"), "x.pcd: header: no SIZE line");
 }
 
 TEST(PcdFile, DataErrorsNameTheFileAndField) {
   const std::string xyz = Header("x y z", "4 4 4", "F F F", Dims(2, 1, 2), "binary");
-  EXPECT_EQ(ErrorOf(xyz + std::string(20, '\0')), "x.pcd: DATA binary: 20 bytes for 2 points of 12 bytes");
+  EXPECT_EQ(PcdErrorOf(xyz + std::string(20, '\0')), "x.pcd: DATA binary: 20 bytes for 2 points of 12 bytes");
   const std::string ascii = Header("x y z", "4 4 4", "F F F", Dims(2, 1, 2), "ascii");
-  EXPECT_EQ(ErrorOf(ascii + "1 2 3\n"), "x.pcd: DATA ascii: 1 point lines, POINTS says 2");
-  EXPECT_EQ(ErrorOf(ascii + "1 2 3\n4 abc 6\n"), "x.pcd: line 12 (field y): bad number 'abc'");
-  EXPECT_EQ(ErrorOf(ascii + "1 2 3 4\n"), "x.pcd: line 11: 4 values, FIELDS and COUNT say 3");
+  EXPECT_EQ(PcdErrorOf(ascii + "1 2 3\n"), "x.pcd: DATA ascii: 1 point lines, POINTS says 2");
+  EXPECT_EQ(PcdErrorOf(ascii + "1 2 3\n4 abc 6\n"), "x.pcd: line 12 (field y): bad number 'abc'");
+  EXPECT_EQ(PcdErrorOf(ascii + "1 2 3 4\n"), "x.pcd: line 11: 4 values, FIELDS and COUNT say 3");
   std::string ring = Header("x y z ring", "4 4 4 2", "F F F I", Dims(1, 1, 1), "binary");
   for (int i = 0; i < 3; ++i) Append(ring, 1.0f);
   Append(ring, static_cast<std::int16_t>(-1));
-  EXPECT_EQ(ErrorOf(ring), "x.pcd: point 0: ring -1 is not in 0..65535");
+  EXPECT_EQ(PcdErrorOf(ring), "x.pcd: point 0: ring -1 is not in 0..65535");
 }
 
 TEST(PcdFile, CompressedErrorsNameTheSizes) {
@@ -160,11 +160,11 @@ TEST(PcdFile, CompressedErrorsNameTheSizes) {
     return bytes + std::string(payload);
   };
   const std::string where = "x.pcd: DATA binary_compressed: ";
-  EXPECT_EQ(ErrorOf(header + "\x01\x02"), where + "no compressed and uncompressed sizes");
-  EXPECT_EQ(ErrorOf(file(50, 90, kGoldenLzf)), where + "compressed size 50, but 49 bytes follow");
-  EXPECT_EQ(ErrorOf(file(49, 91, kGoldenLzf)), where + "uncompressed size 91, but POINTS x record = 90");
-  EXPECT_EQ(ErrorOf(file(1, 90, std::string_view("\0", 1))), where + "1 bytes cannot expand to 90");
-  EXPECT_EQ(ErrorOf(file(48, 90, kGoldenLzf.substr(0, 48))), where + "malformed LZF data");
+  EXPECT_EQ(PcdErrorOf(header + "\x01\x02"), where + "no compressed and uncompressed sizes");
+  EXPECT_EQ(PcdErrorOf(file(50, 90, kGoldenLzf)), where + "compressed size 50, but 49 bytes follow");
+  EXPECT_EQ(PcdErrorOf(file(49, 91, kGoldenLzf)), where + "uncompressed size 91, but POINTS x record = 90");
+  EXPECT_EQ(PcdErrorOf(file(1, 90, std::string_view("\0", 1))), where + "1 bytes cannot expand to 90");
+  EXPECT_EQ(PcdErrorOf(file(48, 90, kGoldenLzf.substr(0, 48))), where + "malformed LZF data");
   EXPECT_EQ(ReadPcd("/nonexistent/x.pcd").error().message, "/nonexistent/x.pcd: cannot open");
 }
 

@@ -21,7 +21,7 @@ void Append(std::string& bytes, T value, bool big_endian) {
   bytes.append(raw, sizeof(T));
 }
 
-std::string ErrorOf(const std::string& bytes) {
+std::string PlyErrorOf(const std::string& bytes) {
   const Result<PointCloud> cloud = ParsePly(bytes, "x.ply");
   return cloud.ok() ? std::string("(no error)") : cloud.error().message;
 }
@@ -100,7 +100,7 @@ TEST(PlyFile, NormalsAreKeptWhenAllThreeArePresent) {
   ASSERT_EQ(cloud->normals.size(), 2U);
   EXPECT_EQ(cloud->normals[0], Eigen::Vector3f(0.0F, 0.0F, 1.0F));
   EXPECT_EQ(cloud->normals[1], Eigen::Vector3f(0.6F, -0.8F, 0.0F));
-  EXPECT_EQ(ErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+  EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
                     "property float nx\nproperty float ny\nend_header\n1 2 3 0 1\n"),
             "x.ply: header line 3 (element vertex): normals need all of nx, ny and nz");
   const Result<PointCloud> plain = ParsePly(kAsciiHeader + kAsciiVertices + kAsciiFace + "0\n1 0\n1 1\n1 2\n0\n0\n", "p.ply");
@@ -109,36 +109,36 @@ TEST(PlyFile, NormalsAreKeptWhenAllThreeArePresent) {
 }
 
 TEST(PlyFile, HeaderErrorsNameTheLineAndProperty) {
-  EXPECT_EQ(ErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty flaot x\n"),
+  EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty flaot x\n"),
             "x.ply: header line 4 (property x): unknown type 'flaot'");
-  EXPECT_EQ(ErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float y\nproperty float z\nend_header\n1 2\n"),
+  EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float y\nproperty float z\nend_header\n1 2\n"),
             "x.ply: header line 3 (element vertex): no property x");
-  EXPECT_EQ(ErrorOf("ply\nformat ascii 1.0\nelement face 1\nproperty list float int vertex_indices\n"),
+  EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement face 1\nproperty list float int vertex_indices\n"),
             "x.ply: header line 4 (property vertex_indices): list count type 'float' is no integer type");
-  EXPECT_EQ(ErrorOf("ply\nformat binary_middle_endian 1.0\n"),
+  EXPECT_EQ(PlyErrorOf("ply\nformat binary_middle_endian 1.0\n"),
             "x.ply: header line 2: unknown format 'binary_middle_endian'");
-  EXPECT_EQ(ErrorOf("PLY\n"), "x.ply: not a PLY file (no 'ply' line)");
-  EXPECT_EQ(ErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"),
+  EXPECT_EQ(PlyErrorOf("PLY\n"), "x.ply: not a PLY file (no 'ply' line)");
+  EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"),
             "x.ply: header: no end_header line");
-  EXPECT_EQ(ErrorOf("ply\nformat ascii 1.0\nelement face 0\nend_header\n"), "x.ply: no element vertex");
+  EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement face 0\nend_header\n"), "x.ply: no element vertex");
 }
 
 TEST(PlyFile, DataErrorsNameTheElementAndProperty) {
-  EXPECT_EQ(ErrorOf(kAsciiHeader + "0.5 -1 2.25 200 2 7 8\n1 2"),
+  EXPECT_EQ(PlyErrorOf(kAsciiHeader + "0.5 -1 2.25 200 2 7 8\n1 2"),
             "x.ply: line 18 (vertex 1, property z): data ends");
-  EXPECT_EQ(ErrorOf(kAsciiHeader + "0.5 -1 2.25 200 2 7 8\n1 two 3 4 0\n"),
+  EXPECT_EQ(PlyErrorOf(kAsciiHeader + "0.5 -1 2.25 200 2 7 8\n1 two 3 4 0\n"),
             "x.ply: line 18 (vertex 1, property y): bad number 'two'");
-  EXPECT_EQ(ErrorOf(kAsciiHeader + "0.5 -1 2.25 200 -2 7 8\n"),
+  EXPECT_EQ(PlyErrorOf(kAsciiHeader + "0.5 -1 2.25 200 -2 7 8\n"),
             "x.ply: line 17 (vertex 0, property extra): bad list count -2");
   const std::string binary = BinaryPly(false);
   const std::size_t data_start = binary.find("end_header\n") + 11;
-  EXPECT_EQ(ErrorOf(binary.substr(0, data_start + 18 + 8)), "x.ply: byte " + std::to_string(data_start + 26) +
+  EXPECT_EQ(PlyErrorOf(binary.substr(0, data_start + 18 + 8)), "x.ply: byte " + std::to_string(data_start + 26) +
                                                                  " (vertex 1, property z): data ends");
-  EXPECT_EQ(ErrorOf(binary.substr(0, binary.size() - 2)),
+  EXPECT_EQ(PlyErrorOf(binary.substr(0, binary.size() - 2)),
             "x.ply: byte " + std::to_string(data_start + 36 + 1) + " (face 0, property vertex_indices): data ends");
   std::string huge = binary;
   huge.replace(huge.find("vertex 2"), 8, "vertex 9");
-  EXPECT_EQ(ErrorOf(huge.substr(0, data_start + 18)),
+  EXPECT_EQ(PlyErrorOf(huge.substr(0, data_start + 18)),
             "x.ply: header line 3 (element vertex): 9 instances cannot fit in the 18 bytes left");
 }
 
@@ -146,16 +146,16 @@ TEST(PlyFile, RangeGridErrors) {
   const std::string body = kAsciiVertices + kAsciiFace;
   std::string wrong_count = kAsciiHeader;
   wrong_count.replace(wrong_count.find("range_grid 6"), 12, "range_grid 5");
-  EXPECT_EQ(ErrorOf(wrong_count + body),
+  EXPECT_EQ(PlyErrorOf(wrong_count + body),
             "x.ply: header line 14 (element range_grid): 5 cells, but obj_info num_cols 3 x num_rows 2 = 6");
   std::string no_shape = kAsciiHeader;
   no_shape.erase(no_shape.find("obj_info num_rows 2\n"), 20);
-  EXPECT_EQ(ErrorOf(no_shape + body), "x.ply: header line 13 (element range_grid): no obj_info num_cols and num_rows");
-  EXPECT_EQ(ErrorOf(kAsciiHeader + body + "0\n1 0\n1 2\n0\n1 3\n0\n"),
+  EXPECT_EQ(PlyErrorOf(no_shape + body), "x.ply: header line 13 (element range_grid): no obj_info num_cols and num_rows");
+  EXPECT_EQ(PlyErrorOf(kAsciiHeader + body + "0\n1 0\n1 2\n0\n1 3\n0\n"),
             "x.ply: range_grid cell 4 (row 1, col 1): vertex 3 out of range (3 vertices)");
-  EXPECT_EQ(ErrorOf(kAsciiHeader + body + "0\n1 0\n2 1 2\n"),
+  EXPECT_EQ(PlyErrorOf(kAsciiHeader + body + "0\n1 0\n2 1 2\n"),
             "x.ply: line 23 (range_grid 2, property vertex_indices): lists 2 vertices; a grid cell holds 0 or 1");
-  EXPECT_EQ(ErrorOf(kAsciiHeader + body + "0\n1 0\n1 -2\n"),
+  EXPECT_EQ(PlyErrorOf(kAsciiHeader + body + "0\n1 0\n1 -2\n"),
             "x.ply: line 23 (range_grid 2, property vertex_indices): bad vertex index -2");
   EXPECT_EQ(ReadPly("/nonexistent/x.ply").error().message, "/nonexistent/x.ply: cannot open");
 }
