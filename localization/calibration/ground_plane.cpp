@@ -72,9 +72,8 @@ std::optional<GroundPlane> FitGroundPlane(std::span<const Eigen::Vector3f> point
   for (int i = 0; i < options.ransac_iterations; ++i) {
     // Drawn one by one: as arguments of one call the three draws have no order, and each
     // compiler would take another sample from the same seed.
-    const std::size_t a = pick(random);
-    const std::size_t b = pick(random);
-    const auto plane = PlaneThrough(candidates[a], candidates[b], candidates[pick(random)]);
+    const std::size_t a = pick(random), b = pick(random), c = pick(random);
+    const auto plane = PlaneThrough(candidates[a], candidates[b], candidates[c]);
     if (!plane || std::abs(plane->first.dot(up)) < min_cos) continue;
     const int inliers = CountInliers(candidates, plane->first, plane->second, options.inlier_distance_m);
     if (inliers > best) {

@@ -101,7 +101,7 @@ TEST(PlyFile, NormalsAreKeptWhenAllThreeArePresent) {
   EXPECT_EQ(cloud->normals[0], Eigen::Vector3f(0.0F, 0.0F, 1.0F));
   EXPECT_EQ(cloud->normals[1], Eigen::Vector3f(0.6F, -0.8F, 0.0F));
   EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
-                    "property float nx\nproperty float ny\nend_header\n1 2 3 0 1\n"),
+                       "property float nx\nproperty float ny\nend_header\n1 2 3 0 1\n"),
             "x.ply: header line 3 (element vertex): normals need all of nx, ny and nz");
   const Result<PointCloud> plain = ParsePly(kAsciiHeader + kAsciiVertices + kAsciiFace + "0\n1 0\n1 1\n1 2\n0\n0\n", "p.ply");
   ASSERT_TRUE(plain.ok()) << plain.error().message;
@@ -111,7 +111,8 @@ TEST(PlyFile, NormalsAreKeptWhenAllThreeArePresent) {
 TEST(PlyFile, HeaderErrorsNameTheLineAndProperty) {
   EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty flaot x\n"),
             "x.ply: header line 4 (property x): unknown type 'flaot'");
-  EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float y\nproperty float z\nend_header\n1 2\n"),
+  EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float y\nproperty float z\n"
+                       "end_header\n1 2\n"),
             "x.ply: header line 3 (element vertex): no property x");
   EXPECT_EQ(PlyErrorOf("ply\nformat ascii 1.0\nelement face 1\nproperty list float int vertex_indices\n"),
             "x.ply: header line 4 (property vertex_indices): list count type 'float' is no integer type");
@@ -133,7 +134,7 @@ TEST(PlyFile, DataErrorsNameTheElementAndProperty) {
   const std::string binary = BinaryPly(false);
   const std::size_t data_start = binary.find("end_header\n") + 11;
   EXPECT_EQ(PlyErrorOf(binary.substr(0, data_start + 18 + 8)), "x.ply: byte " + std::to_string(data_start + 26) +
-                                                                 " (vertex 1, property z): data ends");
+                                                                    " (vertex 1, property z): data ends");
   EXPECT_EQ(PlyErrorOf(binary.substr(0, binary.size() - 2)),
             "x.ply: byte " + std::to_string(data_start + 36 + 1) + " (face 0, property vertex_indices): data ends");
   std::string huge = binary;
@@ -150,7 +151,8 @@ TEST(PlyFile, RangeGridErrors) {
             "x.ply: header line 14 (element range_grid): 5 cells, but obj_info num_cols 3 x num_rows 2 = 6");
   std::string no_shape = kAsciiHeader;
   no_shape.erase(no_shape.find("obj_info num_rows 2\n"), 20);
-  EXPECT_EQ(PlyErrorOf(no_shape + body), "x.ply: header line 13 (element range_grid): no obj_info num_cols and num_rows");
+  EXPECT_EQ(PlyErrorOf(no_shape + body),
+            "x.ply: header line 13 (element range_grid): no obj_info num_cols and num_rows");
   EXPECT_EQ(PlyErrorOf(kAsciiHeader + body + "0\n1 0\n1 2\n0\n1 3\n0\n"),
             "x.ply: range_grid cell 4 (row 1, col 1): vertex 3 out of range (3 vertices)");
   EXPECT_EQ(PlyErrorOf(kAsciiHeader + body + "0\n1 0\n2 1 2\n"),
