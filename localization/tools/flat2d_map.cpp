@@ -15,6 +15,7 @@
 #include "localization/tools/nicp_build_command.hpp"
 #include "localization/tools/nicp_drive_command.hpp"
 #include "localization/tools/calibrate_command.hpp"
+#include "localization/tools/export_command.hpp"
 #include "localization/tools/features_command.hpp"
 #include "localization/tools/landmark_drive_command.hpp"
 #include "localization/tools/register_command.hpp"
@@ -44,6 +45,7 @@ constexpr const char* kUsage = R"(usage:
   flat2d-map calibrate DRIVE [DRIVE2] [--json] [options]
   flat2d-map build --mode landmarks DRIVE.pcap --out DIR --can LOG --dbc DBC --odometry CONFIG [options]
   flat2d-map build --mode catacomb DRIVE.pcap --out DIR [--can LOG --dbc DBC --odometry CONFIG] [options]
+  flat2d-map export DRIVE --out DIR --can LOG --dbc DBC --odometry CONFIG [--truth T.tum] [options]
 
 info: tiles, mapped area, file bytes, resolution, georeference (--json: one JSON object).
 render: FILE ending in .png is a picture in the thesis' colours; otherwise FILE (without
@@ -139,11 +141,12 @@ int main(int argc, char** argv) {
   if (command == "register") return localization::tools::RegisterCommand(argc - 2, argv + 2);
   if (command == "features") return localization::tools::FeaturesCommand(argc - 2, argv + 2);
   if (command == "calibrate") return localization::tools::CalibrateCommand(argc - 2, argv + 2);
+  if (command == "export") return localization::tools::ExportCommand(argc - 2, argv + 2);
   if (command == "--help" || command == "-h") {
     std::cout << kUsage << localization::tools::kGridBuildUsage << localization::tools::kNicpBuildUsage << localization::tools::kNicpDriveUsage
               << localization::tools::kRegisterUsage << localization::tools::kFeaturesUsage
               << localization::tools::kLandmarkDriveUsage << localization::tools::kCalibrateUsage
-              << localization::tools::kCatacombUsage;
+              << localization::tools::kCatacombUsage << localization::tools::kExportUsage;
     return 0;
   }
   Fail(1, std::string("unknown or missing command\n") + kUsage);

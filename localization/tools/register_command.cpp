@@ -32,7 +32,7 @@ elevation bins) registers by projection into its image, an unorganized one by KD
   --iterations N        (default 10)
   --radius M[,M...]     the surface statistics radius R; several: coarse to fine, both
                         clouds refitted before each later R, the last taking 5 of the
-                        iterations (default 0.1,0.03 depth images, 0.3,0.1 LiDAR, 0.1 PLY)
+                        iterations (default 0.1,0.03 depth images, 0.3,0.05 LiDAR, 0.1 PLY)
   --flat-curvature S    sigma below which a surface is a disc (Eq. 5.2; default 0.02)
   --max-distance M      eps_d of Eq. 5.6 (default 0.5)
   --image-scale N       depth images: every N-th pixel and row (default 1: all of them);
