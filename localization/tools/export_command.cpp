@@ -19,7 +19,7 @@ namespace flat2d::localization::tools {
 const char* const kExportUsage = R"(
 export DRIVE --out DIR --can LOG --dbc DBC --odometry CONFIG: a Velodyne capture's complete
 revolutions, each deskewed by the CAN odometry into the sensor frame of its first fan, as
-DIR/revolution_NNNNNN.pcd (x y z intensity ring; N counts the revolutions the odometry
+DIR/revolution_NNNNNN.pcd (x y z, binary; N counts the revolutions the odometry
 covers, from 0), and DIR/sensor_poses.tum: world_T_sensor at each written revolution's
 first fan, in file order. Deskewed points leave their lasers' cones: register the files
 with `register --sensor MODEL` (auto-detection would take them as unorganized).

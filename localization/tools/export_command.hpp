@@ -4,9 +4,9 @@
 // revolution pairs and judged against the truth (scripts/eval-register's simulated set).
 //
 // Each complete revolution the CAN odometry covers is deskewed into the sensor frame of its
-// first fan (deskewed_drive.hpp) and written as DIR/revolution_NNNNNN.pcd (x y z intensity
-// ring; N counts the revolutions the odometry covers). DIR/sensor_poses.tum holds world_T_sensor at
-// each written revolution's first fan: the --truth track's pose there (interpolated, in
+// first fan (deskewed_drive.hpp) and written as DIR/revolution_NNNNNN.pcd (x y z; N counts
+// the revolutions the odometry covers). DIR/sensor_poses.tum holds world_T_sensor at each
+// written revolution's first fan: the --truth track's pose there (interpolated, in
 // 3D), else the dead-reckoned one.
 #pragma once
 
