@@ -42,8 +42,8 @@ constexpr TimeNs kMaxTruthGapNs = 200'000'000;  // the simulator writes its trut
 
 struct Args {
   std::string out;
-  std::optional<std::string> can, dbc, odometry, config, truth;
-  DeskewedDriveOptions walk;
+  std::optional<std::string> config, truth;
+  DeskewedDriveOptions walk;  // the capture, CAN odometry files and revolution limit as given
   int every = 1;
   bool with_next = false;
   bool json = false;
@@ -59,9 +59,9 @@ Args ParseArgs(int argc, char** argv) {
     const std::string_view arg = argv[i];
     auto value = [&] { return std::string(maps::cli::OptionValue(kTool, argc, argv, i)); };
     if (arg == "--out") a.out = value();
-    else if (arg == "--can") a.can = value();
-    else if (arg == "--dbc") a.dbc = value();
-    else if (arg == "--odometry") a.odometry = value();
+    else if (arg == "--can") a.walk.can_log = value();
+    else if (arg == "--dbc") a.walk.dbc = value();
+    else if (arg == "--odometry") a.walk.odometry_config = value();
     else if (arg == "--config") a.config = value();
     else if (arg == "--truth") a.truth = value();
     else if (arg == "--every") a.every = IntegerOption(argc, argv, i, arg);
@@ -72,10 +72,9 @@ Args ParseArgs(int argc, char** argv) {
     else Fail(1, "export: unknown argument " + std::string(arg) + "\n" + kExportUsage);
   }
   if (a.walk.capture.empty() || a.out.empty()) Fail(1, std::string("export needs DRIVE and --out DIR\n") + kExportUsage);
-  if (!a.can || !a.dbc || !a.odometry) Fail(1, "export: deskewing needs CAN odometry: --can LOG --dbc DBC --odometry CONFIG");
-  a.walk.can_log = *a.can;
-  a.walk.dbc = *a.dbc;
-  a.walk.odometry_config = *a.odometry;
+  if (a.walk.can_log.empty() || a.walk.dbc.empty() || a.walk.odometry_config.empty()) {
+    Fail(1, "export: deskewing needs CAN odometry: --can LOG --dbc DBC --odometry CONFIG");
+  }
   return a;
 }
 

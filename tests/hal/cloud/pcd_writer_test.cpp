@@ -21,13 +21,17 @@ PointCloud ThreePoints() {
   return cloud;
 }
 
+// Writes `cloud` to a temporary file named `name` and reads it back.
+Result<PointCloud> RoundTrip(const PointCloud& cloud, const std::string& name) {
+  if (Status s = WritePcd(TempPcd(name), cloud); !s.ok()) return s.error();
+  return ReadPcd(TempPcd(name));
+}
+
 TEST(PcdWriter, PointsIntensityAndRingReadBack) {
   PointCloud cloud = ThreePoints();
   cloud.intensity = {0.0F, 12.5F, 255.0F};
   cloud.ring = {0, 31, 65535};
-  const auto path = TempPcd("all.pcd");
-  ASSERT_TRUE(WritePcd(path, cloud).ok());
-  const Result<PointCloud> read = ReadPcd(path);
+  const Result<PointCloud> read = RoundTrip(cloud, "all.pcd");
   ASSERT_TRUE(read.ok()) << read.error().message;
   EXPECT_EQ(read->points, cloud.points);
   EXPECT_EQ(read->intensity, cloud.intensity);
@@ -38,16 +42,13 @@ TEST(PcdWriter, PointsIntensityAndRingReadBack) {
 TEST(PcdWriter, ChannelsMayBeLeftOut) {
   PointCloud ring_only = ThreePoints();
   ring_only.ring = {4, 5, 6};
-  const auto path = TempPcd("ring_only.pcd");
-  ASSERT_TRUE(WritePcd(path, ring_only).ok());
-  const Result<PointCloud> read = ReadPcd(path);
+  const Result<PointCloud> read = RoundTrip(ring_only, "ring_only.pcd");
   ASSERT_TRUE(read.ok()) << read.error().message;
   EXPECT_EQ(read->points, ring_only.points);
   EXPECT_TRUE(read->intensity.empty());
   EXPECT_EQ(read->ring, ring_only.ring);
 
-  ASSERT_TRUE(WritePcd(path, ThreePoints()).ok());
-  const Result<PointCloud> bare = ReadPcd(path);
+  const Result<PointCloud> bare = RoundTrip(ThreePoints(), "bare.pcd");
   ASSERT_TRUE(bare.ok()) << bare.error().message;
   EXPECT_EQ(bare->points, ThreePoints().points);
   EXPECT_TRUE(bare->ring.empty());
@@ -56,16 +57,13 @@ TEST(PcdWriter, ChannelsMayBeLeftOut) {
 TEST(PcdWriter, NanPointsStayNanAndAnEmptyCloudIsAFile) {
   PointCloud cloud = ThreePoints();
   cloud.points[1] = Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
-  const auto path = TempPcd("nan.pcd");
-  ASSERT_TRUE(WritePcd(path, cloud).ok());
-  const Result<PointCloud> read = ReadPcd(path);
+  const Result<PointCloud> read = RoundTrip(cloud, "nan.pcd");
   ASSERT_TRUE(read.ok()) << read.error().message;
   ASSERT_EQ(read->points.size(), 3U);
   EXPECT_TRUE(std::isnan(read->points[1].x()));
   EXPECT_EQ(read->points[2], cloud.points[2]);
 
-  ASSERT_TRUE(WritePcd(path, PointCloud{}).ok());
-  const Result<PointCloud> empty = ReadPcd(path);
+  const Result<PointCloud> empty = RoundTrip(PointCloud{}, "empty.pcd");
   ASSERT_TRUE(empty.ok()) << empty.error().message;
   EXPECT_TRUE(empty->points.empty());
 }

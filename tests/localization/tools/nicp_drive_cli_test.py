@@ -34,17 +34,28 @@ def run(tool, *args):
     return subprocess.run([tool, *args], capture_output=True, text=True, timeout=600)
 
 
+_OFFICE = []
+
+
+def office_drive():
+    """The simulated drive both test classes use, made once: its folder and CAN arguments."""
+    if not _OFFICE:
+        os.makedirs(WORK, exist_ok=True)
+        drive = os.path.join(WORK, "office")
+        result = run(SIM, "--world", "office", "--drive", "0", "--seed", "3", "--sensor", "vlp16",
+                     "--duration", "8", "--out", drive)
+        assert result.returncode == 0, result.stderr
+        can = ["--can", os.path.join(drive, "can.log"), "--dbc", os.path.join(drive, "vehicle.dbc"),
+               "--odometry", SIM_ODOMETRY]
+        _OFFICE.append((drive, can))
+    return _OFFICE[0]
+
+
 class NicpDrive(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        os.makedirs(WORK, exist_ok=True)
-        cls.drive = os.path.join(WORK, "office")
-        result = run(SIM, "--world", "office", "--drive", "0", "--seed", "3", "--sensor", "vlp16",
-                     "--duration", "8", "--out", cls.drive)
-        assert result.returncode == 0, result.stderr
+        cls.drive, cls.can = office_drive()
         d = cls.drive
-        cls.can = ["--can", os.path.join(d, "can.log"), "--dbc", os.path.join(d, "vehicle.dbc"),
-                   "--odometry", SIM_ODOMETRY]
         cls.out = os.path.join(WORK, "office_nicp")
         frames = ["--max-frames", "20"] if QUICK else []
         cls.build = run(MAP, "build", "--mode", "nicp", os.path.join(d, "lidar.pcap"), *cls.can,
@@ -178,8 +189,7 @@ class Export(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        NicpDrive.setUpClass()
-        cls.drive, cls.can = NicpDrive.drive, NicpDrive.can
+        cls.drive, cls.can = office_drive()
         cls.out = os.path.join(WORK, "office_export")
         cls.result = run(MAP, "export", os.path.join(cls.drive, "lidar.pcap"), *cls.can, "--truth",
                          os.path.join(cls.drive, "truth.tum"), "--every", "20", "--with-next", "--max-frames", "45",
@@ -201,8 +211,9 @@ class Export(unittest.TestCase):
     def test_a_registered_pair_lands_on_the_truth(self):
         # Revolutions 20 and 21 of the office drive (0.107 m apart): measured 3.4 mm and
         # 0.12 deg from the truth (a VLP-16 in a corridor); 1 cm / 0.3 deg bound it, where a
-        # pose one revolution off or a deskew the wrong way round would be 0.1 m out. Deskewed points leave their
-        # lasers' cones, so the sensor is named (auto-detection takes them as unorganized).
+        # pose one revolution off or a deskew the wrong way round would be 0.1 m out.
+        # Deskewed points leave their lasers' cones, so the sensor is named (auto-detection
+        # takes them as unorganized).
         self.assertEqual(self.result.returncode, 0, self.result.stderr)
         poses = sensor_poses(os.path.join(self.out, "sensor_poses.tum"))
         truth = relative(poses[2], poses[3])
