@@ -24,12 +24,14 @@ struct CompatibilityTest {
       : surface_tests(options.metric == ErrorMetric::kNicp),
         max_distance_squared(options.max_distance_m * options.max_distance_m),
         max_curvature_ratio(std::exp(options.max_log_curvature_ratio)),
+        curvature_floor(std::max(options.curvature_floor, 1e-6F)),
         min_normal_dot(options.min_normal_dot) {}
   // The point-to-plane baseline selects "based only on point distance" (5.3): no
   // curvature or normal test.
   bool surface_tests;
   float max_distance_squared;
   float max_curvature_ratio;  // |log a - log b| > eps_sigma  <=>  max(a, b) > e^eps_sigma min(a, b)
+  float curvature_floor;      // NicpOptions::curvature_floor, at least 1e-6 (a perfect plane has 0)
   float min_normal_dot;
 };
 
@@ -41,8 +43,8 @@ inline bool Compatible(const maps::range3d::SurfelCloud& target, std::size_t i, 
   if (!target.has_normal(i) || moved_normal.squaredNorm() < 0.5F) return false;
   if ((moved_point - target.points[i]).squaredNorm() > test.max_distance_squared) return false;
   if (!test.surface_tests) return true;
-  constexpr float kMinCurvature = 1e-6F;  // a perfect plane's sigma is 0
-  const float a = std::max(target.curvature[i], kMinCurvature), b = std::max(source_curvature, kMinCurvature);
+  const float a = std::max(target.curvature[i], test.curvature_floor);
+  const float b = std::max(source_curvature, test.curvature_floor);
   if (std::max(a, b) > test.max_curvature_ratio * std::min(a, b)) return false;
   return target.normals[i].dot(moved_normal) >= test.min_normal_dot;
 }

@@ -63,6 +63,24 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
   return registration;
 }
 
+FrameRegistration Acquire(const maps::range3d::RangeFrame& target, const maps::range3d::RangeFrame& source,
+                          const Eigen::Isometry3d& guess, RegistrationMethod method, NicpOptions options,
+                          const AcquisitionOptions& acquisition) {
+  options.metric = MetricOf(method);
+  options.normal_weight = NormalWeightAt(options, target.statistics_radius_m);
+  options.iterations = acquisition.iterations;
+  options.max_distance_m = acquisition.max_distance_m;
+  options.min_normal_dot = acquisition.min_normal_dot;
+  options.curvature_floor = acquisition.curvature_floor;
+  const auto start = std::chrono::steady_clock::now();
+  FrameRegistration registration;
+  registration.kdtree = true;
+  KdTreeCorrespondenceFinder finder(target.cloud, options.kdtree_alpha);
+  registration.result = Nicp(options).Register(target.cloud, finder, source.cloud, guess);
+  registration.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return registration;
+}
+
 std::vector<int> IterationsPerRadius(int iterations, std::size_t radii) {
   std::vector<int> counts(std::max<std::size_t>(radii, 1), 0);
   if (counts.size() == 1) {
@@ -82,10 +100,16 @@ FrameRegistration RegisterFramesOverRadii(const maps::range3d::RangeFrameOptions
                                           const std::vector<float>& radii_m, maps::range3d::RangeFrame& target,
                                           maps::range3d::RangeFrame& source, const Eigen::Isometry3d& guess,
                                           RegistrationMethod method, const NicpOptions& options,
-                                          CorrespondenceMode mode) {
+                                          CorrespondenceMode mode, const AcquisitionOptions& acquisition) {
   const std::vector<int> counts = IterationsPerRadius(options.iterations, radii_m.size());
   FrameRegistration total;
   total.result.target_T_source = guess;
+  if (acquisition.iterations > 0) {
+    const FrameRegistration acquired = Acquire(target, source, guess, method, options, acquisition);
+    if (acquired.result.ok()) total.result.target_T_source = acquired.result.target_T_source;
+    total.result.iterations = acquired.result.iterations;
+    total.seconds = acquired.seconds;
+  }
   double refit_seconds = 0.0;
   for (std::size_t stage = 0; stage < counts.size(); ++stage) {
     if (counts[stage] == 0) continue;

@@ -41,18 +41,40 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
                                  const Eigen::Isometry3d& guess, RegistrationMethod method, NicpOptions options,
                                  CorrespondenceMode mode = CorrespondenceMode::kAuto);
 
+// A wide first stage for guesses far from the optimum (docs/benchmarks.md, "An acquisition
+// stage for far guesses"). Projective pairs assume a near guess: turned 30 deg or more, a
+// pixel of an organized target sees another surface, and the gates of Eq. 5.6 and 5.8
+// reject nearly every pair. This stage pairs by KD-tree on (p, alpha n) (Eq. 6.10) with
+// both gates opened, at the frames' first radius, over all source points (every 2nd or 4th
+// point halves its time and loses a fifth to a third of the 30 deg guesses);
+// the thesis' stages refine from its estimate, or from the guess when it fails. Not in
+// the thesis, so off unless asked for.
+struct AcquisitionOptions {
+  int iterations = 0;           // 0: no acquisition stage
+  float max_distance_m = 3.0F;  // eps_d while acquiring
+  float min_normal_dot = 0.5F;  // eps_n while acquiring: 60 deg
+  float curvature_floor = 0.02F;  // Eq. 5.7 while acquiring: flat patches agree (nicp_options.hpp)
+};
+
+// The acquisition stage alone (its `seconds` include the KD-tree's construction).
+FrameRegistration Acquire(const maps::range3d::RangeFrame& target, const maps::range3d::RangeFrame& source,
+                          const Eigen::Isometry3d& guess, RegistrationMethod method, NicpOptions options,
+                          const AcquisitionOptions& acquisition);
+
 // Coarse-to-fine statistics radii (docs/benchmarks.md, "Coarse-to-fine statistics radius"):
 // normals fitted over a wide R are smooth enough to pull a pair in from afar, normals over
 // a small one follow the surface more closely and so land nearer the truth. The first
 // radius is the one the frames were prepared with; before each later one both frames are
 // refitted. options.iterations is shared out by IterationsPerRadius, so the work of the
 // iterations is that of one radius. `seconds` includes the refits.
-// A stage that fails ends the registration with its result.
+// A stage that fails ends the registration with its result. With acquisition.iterations
+// > 0 the acquisition stage runs first, its iterations on top of options.iterations.
 FrameRegistration RegisterFramesOverRadii(const maps::range3d::RangeFrameOptions& frames,
                                           const std::vector<float>& radii_m, maps::range3d::RangeFrame& target,
                                           maps::range3d::RangeFrame& source, const Eigen::Isometry3d& guess,
                                           RegistrationMethod method, const NicpOptions& options,
-                                          CorrespondenceMode mode = CorrespondenceMode::kAuto);
+                                          CorrespondenceMode mode = CorrespondenceMode::kAuto,
+                                          const AcquisitionOptions& acquisition = {});
 
 // Iterations per radius of RegisterFramesOverRadii: the last radius refines from near the
 // optimum and takes kFineRadiusIterations (half of them all when fewer than twice that);

@@ -34,7 +34,15 @@ elevation bins) registers by projection into its image, an unorganized one by KD
                         clouds refitted before each later R, the last taking 5 of the
                         iterations (default 0.1,0.03 depth images, 0.3,0.05 LiDAR, 0.1 PLY)
   --flat-curvature S    sigma below which a surface is a disc (Eq. 5.2; default 0.02)
+  --curvature-floor S   Eq. 5.7 compares sigmas raised to at least S, so flat patches
+                        always agree (default 0.02; 0: the sigmas as fitted)
   --max-distance M      eps_d of Eq. 5.6 (default 0.5)
+  --min-normal-dot C    eps_n of Eq. 5.8 (default 0.95)
+  --acquire N           first N iterations of KD-tree pairs with the gates opened, flat
+                        patches' sigmas raised to 0.02 (far guesses: projective pairs need
+                        a near one); then the stages above (default 0: none; not in the
+                        thesis)
+  --acquire-gates D,C   eps_d and eps_n while acquiring (default 3,0.5)
   --image-scale N       depth images: every N-th pixel and row (default 1: all of them);
                         4 is 160x120, the working resolution of the NICP authors' Kinect
                         configuration (docs/benchmarks.md, "Working resolution")
@@ -64,6 +72,7 @@ struct RegisterArgs {
   registration::RegistrationMethod method = registration::RegistrationMethod::kNicp;
   registration::CorrespondenceMode mode = registration::CorrespondenceMode::kAuto;
   registration::NicpOptions nicp;
+  registration::AcquisitionOptions acquisition;
   maps::range3d::RangeFrameOptions frames;
   std::optional<std::vector<float>> radii;  // --radius, coarse to fine; else per sensor
   bool snicp = false;
@@ -101,6 +110,14 @@ void SetFlatCurvature(RegisterArgs& a, double value) {
   a.frames.unorganized_statistics.flat_curvature = sigma;
 }
 
+void SetAcquisitionGates(RegisterArgs& a, const std::vector<double>& gates) {
+  if (!(gates[0] > 0.0) || !(gates[1] >= -1.0 && gates[1] <= 1.0)) {
+    Fail(1, "register: --acquire-gates is D,C with D > 0 metres and C in [-1, 1]");
+  }
+  a.acquisition.max_distance_m = static_cast<float>(gates[0]);
+  a.acquisition.min_normal_dot = static_cast<float>(gates[1]);
+}
+
 RegisterArgs ParseArgs(int argc, char** argv) {
   RegisterArgs a;
   int positional = 0;
@@ -124,6 +141,10 @@ RegisterArgs ParseArgs(int argc, char** argv) {
     else if (arg == "--iterations") a.nicp.iterations = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1000));
     else if (arg == "--radius") SetRadii(a, maps::cli::ParseDecreasing(kTool, arg, value(), 1e-4, 100.0));
     else if (arg == "--flat-curvature") SetFlatCurvature(a, maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
+    else if (arg == "--curvature-floor") a.nicp.curvature_floor = static_cast<float>(maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
+    else if (arg == "--min-normal-dot") a.nicp.min_normal_dot = static_cast<float>(maps::cli::ParseNumberIn(kTool, arg, value(), -1.0, 1.0));
+    else if (arg == "--acquire") a.acquisition.iterations = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 0, 1000));
+    else if (arg == "--acquire-gates") SetAcquisitionGates(a, maps::cli::ParseNumberList(kTool, arg, value(), 2));
     else if (arg == "--max-distance") a.nicp.max_distance_m = static_cast<float>(number());
     else if (arg == "--chi2-bound") a.nicp.chi2_bound = number();
     else if (arg == "--image-scale") a.frames.image_scale = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 8));
@@ -143,6 +164,7 @@ RegisterArgs ParseArgs(int argc, char** argv) {
     else Fail(1, "register: unknown argument " + std::string(arg) + "\n" + kRegisterUsage);
   }
   if (positional != 2) Fail(1, std::string("register needs SOURCE and TARGET\n") + kRegisterUsage);
+  if (a.snicp && a.acquisition.iterations > 0) Fail(1, "register: --acquire is for nicp and point-to-plane");
   return a;
 }
 
@@ -240,7 +262,7 @@ int RegisterCommand(int argc, char** argv) {
     source = LoadOrFail(a.source, a.frames);
     target = LoadOrFail(a.target, a.frames);
     r = registration::RegisterFramesOverRadii(a.frames, RadiiFor(a, target.frame), target.frame, source.frame, guess,
-                                              a.method, a.nicp, a.mode);
+                                              a.method, a.nicp, a.mode, a.acquisition);
   }
   if (a.json) PrintJson(r, source, target, a);
   else PrintText(r, source, target);

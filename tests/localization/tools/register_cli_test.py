@@ -123,6 +123,30 @@ class RegisterCli(unittest.TestCase):
         self.assertLess(t, 0.005)
         self.assertLess(a, 0.05)
 
+    def test_acquire_brings_a_far_guess_within_reach(self):
+        """30 deg about a tilted axis off the reference: the projective stages find too few
+        pairs (exit 3); with --acquire 20 NICP lands within the pair's tolerance (measured
+        17 mm, 0.09 deg on 2026-12-07)."""
+        axis = [1.0 / math.sqrt(1.25), 0.0, 0.5 / math.sqrt(1.25)]
+        c, s, v = math.cos(math.radians(30)), math.sin(math.radians(30)), 1 - math.cos(math.radians(30))
+        x, y, z = axis
+        turn = [[c + x * x * v, x * y * v - z * s, x * z * v + y * s, 0.0],
+                [y * x * v + z * s, c + y * y * v, y * z * v - x * s, 0.0],
+                [z * x * v - y * s, z * y * v + x * s, c + z * z * v, 0.0], [0.0, 0.0, 0.0, 1.0]]
+        init = os.path.join(WORK, "far_init.txt")
+        with open(init, "w") as f:
+            f.write("\n".join(" ".join("%.9f" % x for x in row) for row in mul(turn, self.hdl_reference)) + "\n")
+        stuck = run(self.hdl_source, self.hdl_target, "--init", init, "--json")
+        self.assertEqual(stuck.returncode, 3, stuck.stderr)
+        self.assertEqual(json.loads(stuck.stdout)["failure"], "too_few_correspondences")
+        acquired = register(self.hdl_source, self.hdl_target, "--init", init, "--acquire", "20")
+        t, a = error(acquired["target_T_source"], self.hdl_reference)
+        print("HDL-32E pair from 30 deg off with --acquire 20: %.4f m %.3f deg, %d iterations" % (
+            t, a, acquired["iterations"]))
+        self.assertLess(t, 0.03)
+        self.assertLess(a, 0.3)
+        self.assertGreater(acquired["iterations"], 10)
+
     def test_text_output_prints_the_transform(self):
         r = run(self.hdl_source, self.hdl_target)
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -173,9 +197,14 @@ class RegisterCli(unittest.TestCase):
         not_depth = run(self.hdl_source, self.hdl_target, "--method", "snicp")
         self.assertEqual(not_depth.returncode, 2)
         self.assertIn("depth", not_depth.stderr)
+        snicp_acquire = run(self.tum_source, self.tum_target, "--method", "snicp", "--acquire", "5")
+        self.assertEqual(snicp_acquire.returncode, 1)
+        self.assertIn("--acquire", snicp_acquire.stderr)
         for flag, value in (("--method", "icp"), ("--image-scale", "9"), ("--snicp-scales", "1,2"),
                             ("--flat-curvature", "-0.1"), ("--iterations", "0"), ("--radius", "0.03,0.1"),
-                            ("--radius", "0"), ("--radius", "0.1,")):
+                            ("--radius", "0"), ("--radius", "0.1,"), ("--acquire", "-1"),
+                            ("--acquire-gates", "0,0.5"), ("--acquire-gates", "3"), ("--acquire-gates", "3,2"),
+                            ("--min-normal-dot", "1.5"), ("--curvature-floor", "-0.1")):
             bad = run(self.tum_source, self.tum_target, flag, value)
             self.assertEqual(bad.returncode, 1, flag + " " + value)
             self.assertIn(flag, bad.stderr, flag + " " + value)
