@@ -45,14 +45,14 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
 // stage for far guesses"). Projective pairs assume a near guess: turned 30 deg or more, a
 // pixel of an organized target sees another surface, and the gates of Eq. 5.6 and 5.8
 // reject nearly every pair. This stage pairs by KD-tree on (p, alpha n) (Eq. 6.10) with
-// both gates opened, at the frames' first radius, over all source points (every 2nd or 4th
-// point halves its time and loses a fifth to a third of the 30 deg guesses);
-// the thesis' stages refine from its estimate, or from the guess when it fails. Not in
-// the thesis, so off unless asked for.
+// both gates opened, at the frames' first radius, over every source point (thinned to every
+// 2nd or 4th, it lost a fifth to a third of the 30 deg guesses). The thesis' stages refine
+// from its estimate, or from the guess when it fails. Not in the thesis, so off unless
+// asked for.
 struct AcquisitionOptions {
-  int iterations = 0;           // 0: no acquisition stage
-  float max_distance_m = 3.0F;  // eps_d while acquiring
-  float min_normal_dot = 0.5F;  // eps_n while acquiring: 60 deg
+  int iterations = 0;             // 0: no acquisition stage
+  float max_distance_m = 3.0F;    // eps_d while acquiring
+  float min_normal_dot = 0.5F;    // eps_n while acquiring: 60 deg
   float curvature_floor = 0.02F;  // Eq. 5.7 while acquiring: flat patches agree (nicp_options.hpp)
 };
 

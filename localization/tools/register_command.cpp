@@ -35,7 +35,7 @@ elevation bins) registers by projection into its image, an unorganized one by KD
                         iterations (default 0.1,0.03 depth images, 0.3,0.05 LiDAR, 0.1 PLY)
   --flat-curvature S    sigma below which a surface is a disc (Eq. 5.2; default 0.02)
   --curvature-floor S   Eq. 5.7 compares sigmas raised to at least S, so flat patches
-                        always agree (default 0.02; 0: the sigmas as fitted)
+                        always agree (default 0: the sigmas as fitted)
   --max-distance M      eps_d of Eq. 5.6 (default 0.5)
   --min-normal-dot C    eps_n of Eq. 5.8 (default 0.95)
   --acquire N           first N iterations of KD-tree pairs with the gates opened, flat
@@ -125,6 +125,9 @@ RegisterArgs ParseArgs(int argc, char** argv) {
     const std::string_view arg = argv[i];
     auto value = [&] { return maps::cli::OptionValue(kTool, argc, argv, i); };
     auto number = [&] { return maps::cli::ParseNumber(kTool, arg, value()); };
+    auto number_in = [&](double low, double high) {
+      return static_cast<float>(maps::cli::ParseNumberIn(kTool, arg, value(), low, high));
+    };
     if (arg == "--init") a.init = value();
     else if (arg == "--method") {
       const std::string_view name = value();
@@ -141,8 +144,8 @@ RegisterArgs ParseArgs(int argc, char** argv) {
     else if (arg == "--iterations") a.nicp.iterations = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 1, 1000));
     else if (arg == "--radius") SetRadii(a, maps::cli::ParseDecreasing(kTool, arg, value(), 1e-4, 100.0));
     else if (arg == "--flat-curvature") SetFlatCurvature(a, maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
-    else if (arg == "--curvature-floor") a.nicp.curvature_floor = static_cast<float>(maps::cli::ParseNumberIn(kTool, arg, value(), 0.0, 1.0));
-    else if (arg == "--min-normal-dot") a.nicp.min_normal_dot = static_cast<float>(maps::cli::ParseNumberIn(kTool, arg, value(), -1.0, 1.0));
+    else if (arg == "--curvature-floor") a.nicp.curvature_floor = number_in(0.0, 1.0);
+    else if (arg == "--min-normal-dot") a.nicp.min_normal_dot = number_in(-1.0, 1.0);
     else if (arg == "--acquire") a.acquisition.iterations = static_cast<int>(maps::cli::ParseInteger(kTool, arg, value(), 0, 1000));
     else if (arg == "--acquire-gates") SetAcquisitionGates(a, maps::cli::ParseNumberList(kTool, arg, value(), 2));
     else if (arg == "--max-distance") a.nicp.max_distance_m = static_cast<float>(number());

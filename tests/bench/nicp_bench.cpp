@@ -2,7 +2,8 @@
 // i7-3630QM): a TUM fr1/rpy depth pair with the new frame's statistics at full, half and
 // quarter resolution (the image scale, the argument; the NICP authors' Kinect configuration
 // works at 160x120), the statistics alone, SNICP, and an HDL-32E revolution pair; and the
-// local-map tracker's step on an HDL-32E revolution with and without its pyramid (issue 12).
+// local-map tracker's step on an HDL-32E revolution with and without its pyramid (issue 12);
+// the acquisition stage for far guesses on the HDL-32E pair.
 // Files are read once outside the timed loop: a camera or a driver hands the frame over
 // decoded.
 #include <benchmark/benchmark.h>
@@ -207,6 +208,34 @@ void BM_NicpHdl32eRevolution(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_NicpHdl32eRevolution)->Unit(benchmark::kMillisecond);
+
+// The acquisition stage for far guesses (frame_registration.hpp) on the HDL-32E pair from
+// identity: Arg 0 the thesis' stages alone (radii 0.3, 0.05 m, as `register`), Arg 20 with
+// 20 acquisition iterations first. Both frames' statistics are prepared outside the loop;
+// the refit for the fine radius is inside, as in `register`.
+void BM_AcquisitionHdl32ePair(benchmark::State& state) {
+  const auto pair = LoadHdl32ePair(state);
+  if (!pair) return;
+  const maps::range3d::RangeFrameOptions options;
+  const auto prepared_target = maps::range3d::FrameFromCloud(pair->first, maps::range3d::SensorModel::kHdl32e, options);
+  const auto prepared_source = maps::range3d::FrameFromCloud(pair->second, maps::range3d::SensorModel::kHdl32e, options);
+  const std::vector<float> radii{options.lidar_statistics.radius_m, localization::registration::kLidarFineRadiusM};
+  localization::registration::AcquisitionOptions acquisition;
+  acquisition.iterations = static_cast<int>(state.range(0));
+  int iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    maps::range3d::RangeFrame target = prepared_target, source = prepared_source;
+    state.ResumeTiming();
+    const auto r = localization::registration::RegisterFramesOverRadii(
+        options, radii, target, source, Eigen::Isometry3d::Identity(), RegistrationMethod::kNicp, {},
+        localization::registration::CorrespondenceMode::kAuto, acquisition);
+    iterations = r.result.iterations;
+    benchmark::DoNotOptimize(r.result.target_T_source);
+  }
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_AcquisitionHdl32ePair)->ArgName("acquire")->Arg(0)->Arg(20)->Unit(benchmark::kMillisecond);
 
 // The local-map tracker's step on an HDL-32E revolution (issue 12): render the model (one
 // revolution) from the last pose, register the next revolution to it and merge it. Arg:
