@@ -66,19 +66,11 @@ FrameRegistration RegisterFrames(const maps::range3d::RangeFrame& target, const 
 FrameRegistration Acquire(const maps::range3d::RangeFrame& target, const maps::range3d::RangeFrame& source,
                           const Eigen::Isometry3d& guess, RegistrationMethod method, NicpOptions options,
                           const AcquisitionOptions& acquisition) {
-  options.metric = MetricOf(method);
-  options.normal_weight = NormalWeightAt(options, target.statistics_radius_m);
   options.iterations = acquisition.iterations;
   options.max_distance_m = acquisition.max_distance_m;
   options.min_normal_dot = acquisition.min_normal_dot;
   options.curvature_floor = acquisition.curvature_floor;
-  const auto start = std::chrono::steady_clock::now();
-  FrameRegistration registration;
-  registration.kdtree = true;
-  KdTreeCorrespondenceFinder finder(target.cloud, options.kdtree_alpha);
-  registration.result = Nicp(options).Register(target.cloud, finder, source.cloud, guess);
-  registration.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return registration;
+  return RegisterFrames(target, source, guess, method, options, CorrespondenceMode::kKdTree);
 }
 
 std::vector<int> IterationsPerRadius(int iterations, std::size_t radii) {

@@ -80,4 +80,12 @@ std::vector<Eigen::Vector3f> RenderLidar(const BoxScene& scene, const maps::rang
   return points;
 }
 
+maps::range3d::RangeFrame RenderLidarFrame(const BoxScene& scene, maps::range3d::SensorModel sensor,
+                                           const Eigen::Isometry3f& world_T_sensor,
+                                           const maps::range3d::RangeFrameOptions& frames) {
+  hal::cloud::PointCloud cloud;
+  cloud.points = RenderLidar(scene, maps::range3d::LidarProjection(sensor, frames.lidar_columns), world_T_sensor);
+  return maps::range3d::FrameFromCloud(cloud, sensor, frames);
+}
+
 }  // namespace flat2d::testing

@@ -12,6 +12,7 @@
 
 #include "hal/cloud/point_cloud.hpp"
 #include "maps/range3d/projection.hpp"
+#include "maps/range3d/range_frame.hpp"
 
 namespace flat2d::testing {
 
@@ -40,5 +41,11 @@ hal::cloud::DepthImage RenderDepth(const BoxScene& scene, const maps::range3d::P
 // and columns (one ray per pixel centre), in the sensor frame.
 std::vector<Eigen::Vector3f> RenderLidar(const BoxScene& scene, const maps::range3d::RangeProjection& projection,
                                          const Eigen::Isometry3f& world_T_sensor);
+
+// The range frame of a `sensor` revolution at world_T_sensor: RenderLidar on its laser rows
+// and frames.lidar_columns columns, with the frames' statistics.
+maps::range3d::RangeFrame RenderLidarFrame(const BoxScene& scene, maps::range3d::SensorModel sensor,
+                                           const Eigen::Isometry3f& world_T_sensor,
+                                           const maps::range3d::RangeFrameOptions& frames);
 
 }  // namespace flat2d::testing

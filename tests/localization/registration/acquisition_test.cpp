@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include "localization/registration/frame_registration.hpp"
-#include "maps/range3d/range_frame.hpp"
 #include "tests/testing/box_scene.hpp"
 #include "tests/testing/pose_error.hpp"
 
@@ -15,15 +14,6 @@ namespace flat2d::localization::registration {
 namespace {
 
 constexpr float kAcquisitionRadiusM = 0.3F;  // the LiDAR's first radius (RangeFrameOptions)
-
-maps::range3d::RangeFrame RoomRevolutionAt(const Eigen::Isometry3f& world_T_sensor,
-                                           const maps::range3d::RangeFrameOptions& frames) {
-  const maps::range3d::RangeProjection lidar =
-      maps::range3d::LidarProjection(maps::range3d::SensorModel::kHdl32e, frames.lidar_columns);
-  hal::cloud::PointCloud cloud;
-  cloud.points = testing::RenderLidar(testing::OfficeRoom(), lidar, world_T_sensor);
-  return maps::range3d::FrameFromCloud(cloud, maps::range3d::SensorModel::kHdl32e, frames);
-}
 
 struct FarGuessPair {
   maps::range3d::RangeFrameOptions frames;
@@ -40,8 +30,9 @@ FarGuessPair MakeFarGuessPair() {
   Eigen::Isometry3f target_T_source = Eigen::Isometry3f::Identity();
   target_T_source.linear() = Eigen::AngleAxisf(0.05F, Eigen::Vector3f::UnitZ()).toRotationMatrix();
   target_T_source.translation() = Eigen::Vector3f(0.15F, 0.05F, 0.0F);
-  pair.target = RoomRevolutionAt(world_T_target, pair.frames);
-  pair.source = RoomRevolutionAt(world_T_target * target_T_source, pair.frames);
+  constexpr auto kHdl32e = maps::range3d::SensorModel::kHdl32e;
+  pair.target = testing::RenderLidarFrame(testing::OfficeRoom(), kHdl32e, world_T_target, pair.frames);
+  pair.source = testing::RenderLidarFrame(testing::OfficeRoom(), kHdl32e, world_T_target * target_T_source, pair.frames);
   pair.truth = target_T_source.cast<double>();
   Eigen::Isometry3d off = Eigen::Isometry3d::Identity();
   off.linear() = Eigen::AngleAxisd(35.0 * M_PI / 180.0, Eigen::Vector3d(0.3, -0.4, 1.0).normalized()).toRotationMatrix();
@@ -50,6 +41,7 @@ FarGuessPair MakeFarGuessPair() {
   return pair;
 }
 
+// `pair` by value: the stages refit both frames' statistics in place.
 FrameRegistration RegisterFrom(FarGuessPair pair, const Eigen::Isometry3d& guess, RegistrationMethod method,
                                const AcquisitionOptions& acquisition) {
   return RegisterFramesOverRadii(pair.frames, {kAcquisitionRadiusM, kLidarFineRadiusM}, pair.target, pair.source,

@@ -167,16 +167,13 @@ TEST(ModelTracker, NicpOverAFineRadiusTracksToo) {
 // An HDL-32E in the office room, 1080 columns, turning 0.03 rad and moving `step` metres
 // along x a revolution: revolution k's pose and range frame.
 std::pair<Eigen::Isometry3d, maps::range3d::RangeFrame> OfficeRevolution(int k, float step) {
-  const maps::range3d::RangeProjection lidar =
-      maps::range3d::LidarProjection(maps::range3d::SensorModel::kHdl32e, 1080);
   maps::range3d::RangeFrameOptions frames;
-  frames.lidar_columns = lidar.cols();
+  frames.lidar_columns = 1080;
   Eigen::Isometry3f world_T_sensor = Eigen::Isometry3f::Identity();
   world_T_sensor.linear() = Eigen::AngleAxisf(0.03F * static_cast<float>(k), Eigen::Vector3f::UnitZ()).toRotationMatrix();
   world_T_sensor.translation() = Eigen::Vector3f(-1.0F + step * static_cast<float>(k), -0.5F, 1.2F);
-  hal::cloud::PointCloud cloud;
-  cloud.points = testing::RenderLidar(testing::OfficeRoom(), lidar, world_T_sensor);
-  return {world_T_sensor.cast<double>(), maps::range3d::FrameFromCloud(cloud, maps::range3d::SensorModel::kHdl32e, frames)};
+  return {world_T_sensor.cast<double>(),
+          testing::RenderLidarFrame(testing::OfficeRoom(), maps::range3d::SensorModel::kHdl32e, world_T_sensor, frames)};
 }
 
 // Tracks revolutions 0..last of OfficeRevolution from the identity guess; the pose error of
